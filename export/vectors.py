@@ -45,7 +45,39 @@ def facing_vector() -> dict:
     return {"about": "a window rotated about +y so that at_frame faces +z (tolerance 1e-9)", "cases": cases}
 
 
-FAMILIES: dict[str, Callable[[], dict]] = {"prng": prng_vector, "facing": facing_vector}
+def e2e_vector() -> dict:
+    """For every served model: manifest + history + request + seed -> futures and lengths.
+
+    Stochastic methods add cases whose stored margins (to the stop threshold, to sampling CDF
+    bounds) are at least E2E_MARGIN, because a 1e-6 runtime difference could flip such a
+    decision; the deterministic baselines have no such decisions.
+    """
+    from .data.clip_json import read_clip
+    from .manifest import read_manifest
+    from .paths import CLIPS_DIR, MODELS_DIR
+    from .sample.predictor import load_predictor
+    from .sample.request import Request
+    manifest = read_manifest(MODELS_DIR / "manifest.json")
+    cases = []
+    for entry in manifest["models"]:
+        predictor = load_predictor(entry["id"])
+        n = entry["params"]["history_frames"]
+        for clip_name, start in [("walker_walk_forward", 3), ("spin", 90)]:
+            history = read_clip(CLIPS_DIR / f"{clip_name}.json").positions[start:start + n]
+            stochastic = any(c["id"] == "k" for c in entry["controls"])
+            req = Request(k=4 if stochastic else 1, seed=7, horizon_frames=entry["params"]["future_frames"] + 15)
+            pred = predictor.predict(history, req)
+            cases.append({"model": entry["id"], "model_hash": entry["hash"], "clip": clip_name, "start": start,
+                          "history": history.astype(np.float32).tolist(), "request": req.to_json(),
+                          "lengths": pred.lengths.tolist(), "futures": np.round(pred.futures.astype(np.float64), 6).tolist()})
+    return {"about": "TypeScript predictors must reproduce these: lengths (and sampled labels) exactly, "
+                     "positions to 1e-4. Cases keep margins of at least E2E_MARGIN to any decision threshold.",
+            "margin": E2E_MARGIN, "cases": cases}
+
+
+E2E_MARGIN = 1e-3
+
+FAMILIES: dict[str, Callable[[], dict]] = {"prng": prng_vector, "facing": facing_vector, "e2e": e2e_vector}
 
 
 def render(doc: dict) -> str:

@@ -11,7 +11,7 @@ from . import split as split_rules
 from .clip import Clip
 from .clip_json import write_clip
 from .skeleton import SKELETON
-from .sources import FPS, MotionSource
+from .sources import FPS
 
 
 def index_document(clips: list[Clip], data_hash: str) -> dict:
@@ -39,10 +39,10 @@ def files_hash(paths: list[Path]) -> str:
     return "sha256:" + h.hexdigest()
 
 
-def build(source: MotionSource, out_dir: Path = CLIPS_DIR) -> dict:
+def build(clips: list[Clip], out_dir: Path = CLIPS_DIR) -> dict:
+    """Write every clip and the index (with the split) into out_dir; returns the index."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    clips = source.clips()
     paths = []
     for clip in clips:
         path = out_dir / f"{clip.name}.json"

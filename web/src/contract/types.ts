@@ -87,6 +87,7 @@ export interface ModelEntry {
   method: Method;
   label: string;
   description?: string;
+  config?: string;
   hash: string;
   graphs: Record<string, GraphSpec>;
   files?: Record<string, string>;

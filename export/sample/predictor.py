@@ -1,0 +1,53 @@
+"""The Python predictor: the same contract and the same steps as the TypeScript one.
+
+Evaluation predicts through it, and the shared end-to-end vectors tie it to the browser,
+so what is evaluated is what the browser runs.
+"""
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+
+import numpy as np
+
+from ..manifest import entry as find_entry, read_manifest
+from ..paths import MODELS_DIR
+from .request import Prediction, Request, check_history, check_request
+from .runner import GraphRunner
+
+
+class Predictor:
+    def __init__(self, entry: dict, manifest: dict, models_dir: Path = MODELS_DIR):
+        self.entry, self.manifest = entry, manifest
+        self.params = entry["params"]
+        self.runner = GraphRunner(entry, models_dir)
+
+    def predict(self, history: np.ndarray, req: Request) -> Prediction:
+        """history [frames, J, 3] in the world frame -> K futures in the same frame."""
+        joints = len(self.manifest["skeleton"]["joints"])
+        history = check_history(history, self.params["history_frames"], joints)
+        check_request(req, self.entry, self.manifest["actions"])
+        return self._predict(history, req)
+
+    def _predict(self, history: np.ndarray, req: Request) -> Prediction:
+        raise NotImplementedError
+
+
+# The one place that knows which predictor runs which method (twin of web/src/predictor/factory.ts).
+PREDICTORS: dict[str, str] = {
+    "zero_velocity": "export.sample.direct:DirectPredictor",
+    "regression": "export.sample.direct:DirectPredictor",
+    "wat": "export.sample.wat:WatPredictor",
+    "lcp_vae": "export.sample.lcp_vae:LcpVaePredictor",
+    "keyposes": "export.sample.keyposes:KeyposesPredictor",
+}
+
+
+def predictor_for(entry: dict, manifest: dict, models_dir: Path) -> Predictor:
+    module, name = PREDICTORS[entry["method"]].split(":")
+    return getattr(importlib.import_module(module), name)(entry, manifest, models_dir)
+
+
+def load_predictor(model_id: str, models_dir: Path = MODELS_DIR) -> Predictor:
+    manifest = read_manifest(Path(models_dir) / "manifest.json")
+    return predictor_for(find_entry(manifest, model_id), manifest, Path(models_dir))

@@ -1,0 +1,65 @@
+"""The committed models in public/models: valid, complete, and not stale against config, data and code."""
+import hashlib
+
+import numpy as np
+import pytest
+
+from export.config import load_config, model_hash
+from export.contract import load_json
+from export.data.clip_json import read_clip
+from export.manifest import read_manifest
+from export.paths import CLIPS_DIR, MODELS_DIR
+from export.sample.predictor import load_predictor
+from export.sample.request import PredictError, Request
+
+MANIFEST = read_manifest(MODELS_DIR / "manifest.json")
+
+
+def test_manifest_uses_the_committed_data():
+    index = load_json(CLIPS_DIR / "index.json", "clip-index")
+    assert MANIFEST["data_hash"] == index["data_hash"]
+    assert MANIFEST["skeleton"]["joints"] == index["skeleton"]["joints"]
+
+
+@pytest.mark.parametrize("entry", MANIFEST["models"], ids=lambda e: e["id"])
+def test_committed_model_is_not_stale(entry):
+    cfg = load_config(entry["config"])
+    assert cfg["id"] == entry["id"]
+    assert entry["hash"] == model_hash(cfg, MANIFEST["data_hash"]), (
+        f"{entry['id']} is stale against its config, the data or export/ code: run `make models`")
+    for graph in entry["graphs"].values():
+        blob = (MODELS_DIR / graph["file"]).read_bytes()
+        assert hashlib.sha256(blob).hexdigest() == graph["sha256"] and len(blob) == graph["bytes"]
+
+
+def test_python_predictor_follows_the_contract():
+    clip = read_clip(CLIPS_DIR / "walker_walk_forward.json")
+    p = load_predictor("regression-gru")
+    pred = p.predict(clip.positions[:10], Request(k=1, seed=3, horizon_frames=50))
+    assert pred.futures.shape == (1, 50, 18, 3) and pred.lengths.tolist() == [50]
+    assert np.all(np.isfinite(pred.futures))
+    # the future joins the history: its first frame is near the last observed pose
+    assert np.abs(pred.futures[0, 0] - clip.positions[9]).max() < 0.15
+    zero = load_predictor("zero-velocity").predict(clip.positions[:10], Request(horizon_frames=40))
+    np.testing.assert_allclose(zero.futures[0], np.repeat(clip.positions[9:10], 40, axis=0), atol=1e-6)
+
+
+@pytest.mark.parametrize("history, req, message", [
+    (np.zeros((5, 18, 3)), Request(), "history has 5 frames; this model needs at least 10"),
+    (np.full((10, 18, 3), np.nan), Request(), "NaN"),
+    (np.zeros((10, 17, 3)), Request(), r"history must be \[frames, 18, 3\]"),
+    (np.zeros((10, 18, 3)), Request(k=3), "deterministic"),
+    (np.zeros((10, 18, 3)), Request(seed=-2), "seed"),
+    (np.zeros((10, 18, 3)), Request(actions=["moonwalk"]), "unknown action 'moonwalk'"),
+])
+def test_bad_requests_get_clear_messages(history, req, message):
+    with pytest.raises(PredictError, match=message):
+        load_predictor("regression-gru").predict(history, req)
+
+
+def test_missing_model_file_is_named(tmp_path):
+    import shutil
+    shutil.copy(MODELS_DIR / "manifest.json", tmp_path / "manifest.json")
+    p = load_predictor("regression-gru", tmp_path)
+    with pytest.raises(FileNotFoundError, match="regression-gru.predict.onnx: model file missing"):
+        p.predict(np.zeros((10, 18, 3)), Request())

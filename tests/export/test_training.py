@@ -1,0 +1,79 @@
+"""The shared training loop and export path: determinism, resumption, DDP, ONNX parity."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import onnx
+import pytest
+import torch
+
+from export.config import load_config, override
+from export.onnx.export import check_parity, to_onnx
+from export.paths import ROOT
+from export.pipeline import train
+
+TINY = {"train.steps": 12, "train.batch_size": 8, "train.checkpoint_every": 6, "model.hidden": 16, "train.stride": 4}
+
+
+def tiny_cfg():
+    return override(load_config("regression.json"), **TINY)
+
+
+def test_a_tiny_config_trained_twice_gives_byte_identical_onnx(clips):
+    blobs = []
+    for _ in range(2):
+        method, model = train(tiny_cfg(), list(clips.values()), progress=False)
+        blobs.append(to_onnx(method.graphs(model)["predict"]))
+    assert blobs[0] == blobs[1]
+    assert len(blobs[0]) > 10_000
+
+
+def test_resuming_from_a_checkpoint_equals_an_uninterrupted_run(clips, tmp_path):
+    cl = list(clips.values())
+    _, full = train(tiny_cfg(), cl, tmp_path / "full", progress=False)
+    train(tiny_cfg(), cl, tmp_path / "paused", progress=False, stop_at=6)
+    assert torch.load(tmp_path / "paused" / "checkpoint.pt", weights_only=False)["step"] == 6
+    _, resumed = train(tiny_cfg(), cl, tmp_path / "paused", resume=True, progress=False)
+    for (k, a), b in zip(full.state_dict().items(), resumed.state_dict().values()):
+        assert torch.equal(a, b), k
+
+
+def test_onnx_matches_torch_and_the_check_can_fail(clips):
+    method, model = train(tiny_cfg(), list(clips.values()), progress=False)
+    graph = method.graphs(model)["predict"]
+    blob = to_onnx(graph)
+    assert check_parity(graph, blob) < 1e-4
+    m = onnx.load_from_string(blob)
+    assert m.opset_import[0].version >= 18 and not m.graph.value_info and not m.doc_string
+    dims = m.graph.input[0].type.tensor_type.shape.dim
+    assert dims[0].dim_param and [d.dim_value for d in dims[1:]] == [10, 18, 3]  # dynamic batch
+    # a perturbed weight must be caught
+    with torch.no_grad():
+        model.head[-1].bias.add_(0.05)
+    with pytest.raises(AssertionError, match="differs from torch"):
+        check_parity(graph, blob)
+
+
+def test_ddp_with_two_gloo_ranks_matches_one_process(tmp_path, clips):
+    cfg = tiny_cfg()
+    cfg_path = tmp_path / "tiny.json"
+    cfg_path.write_text(json.dumps(cfg))
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "OMP_NUM_THREADS": "1"}
+    common = ["-m", "export", "train", "--config", str(cfg_path), "--steps", "4", "--batch-size", "8"]
+    bindir = os.path.dirname(sys.executable)
+    subprocess.run([os.path.join(bindir, "torchrun"), "--standalone", "--nproc_per_node", "2", *common,
+                    "--run-dir", str(tmp_path / "ddp")], check=True, env=env, cwd=ROOT, timeout=300,
+                   capture_output=True)
+    subprocess.run([sys.executable, *common, "--run-dir", str(tmp_path / "one")], check=True, env=env,
+                   cwd=ROOT, timeout=300, capture_output=True)
+    single = torch.load(tmp_path / "one" / "weights.pt")
+    for rank in (0, 1):
+        ranked = torch.load(tmp_path / "ddp" / f"weights-rank{rank}.pt")
+        for k, v in single.items():
+            np.testing.assert_allclose(ranked[k].numpy(), v.numpy(), atol=1e-5, err_msg=f"rank {rank} {k}")
+    # and the four steps did move the weights
+    _, init = train(override(cfg, **{"train.steps": 0}), list(clips.values()), progress=False)
+    moved = max(float((single[k] - v).abs().max()) for k, v in init.state_dict().items())
+    assert moved > 1e-4

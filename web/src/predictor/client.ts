@@ -1,0 +1,84 @@
+// The page's handle on the predictor worker. The page never imports onnxruntime: only the
+// worker does (tests/web/worker-structure.test.ts checks it).
+import type { Manifest } from '../contract/types';
+import type { FromWorker, ToWorker } from './protocol';
+import { PredictError, Superseded, type History, type Prediction, type PredictRequest } from './types';
+
+export class ModelLoadError extends Error {
+  constructor(message: string) {
+    super(message);
+    this.name = 'ModelLoadError';
+  }
+}
+
+interface Pending {
+  resolve: (v: { prediction?: Prediction; ms: number }) => void;
+  reject: (e: Error) => void;
+  onProgress?: (loaded: number, total: number) => void;
+}
+
+export function webAssemblyAvailable(): boolean {
+  try {
+    return typeof WebAssembly === 'object' && typeof WebAssembly.instantiate === 'function'
+      && WebAssembly.validate(new Uint8Array([0, 97, 115, 109, 1, 0, 0, 0]));
+  } catch {
+    return false;
+  }
+}
+
+export class PredictorClient {
+  private worker: Worker;
+  private nextId = 1;
+  private pending = new Map<number, Pending>();
+
+  constructor(baseUrl: string, manifest: Manifest, worker?: Worker) {
+    if (!webAssemblyAvailable()) throw new ModelLoadError('WebAssembly is not available in this browser, so models cannot run here');
+    this.worker = worker ?? new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
+    this.worker.onmessage = (ev: MessageEvent<FromWorker>) => this.receive(ev.data);
+    this.worker.onerror = (ev) => {
+      const err = new ModelLoadError(`the predictor worker failed: ${ev.message || 'unknown error'}`);
+      for (const p of this.pending.values()) p.reject(err);
+      this.pending.clear();
+    };
+    this.send({ type: 'init', baseUrl, manifest });
+  }
+
+  private send(msg: ToWorker): void {
+    this.worker.postMessage(msg);
+  }
+
+  private receive(msg: FromWorker): void {
+    const p = this.pending.get(msg.id);
+    if (!p) return;
+    if (msg.type === 'progress') { p.onProgress?.(msg.loaded, msg.total); return; }
+    this.pending.delete(msg.id);
+    if (msg.type === 'result') p.resolve({ prediction: msg.prediction, ms: msg.ms });
+    else if (msg.type === 'loaded') p.resolve({ ms: msg.ms });
+    else if (msg.kind === 'superseded') p.reject(new Superseded());
+    else if (msg.kind === 'predict') p.reject(new PredictError(msg.message));
+    else p.reject(new ModelLoadError(msg.message));
+  }
+
+  private call(msg: ToWorker & { id: number }, onProgress?: Pending['onProgress']) {
+    return new Promise<{ prediction?: Prediction; ms: number }>((resolve, reject) => {
+      this.pending.set(msg.id, { resolve, reject, onProgress });
+      this.send(msg);
+    });
+  }
+
+  /** Load a model's sessions (lazily, once); progress in bytes. */
+  async load(model: string, onProgress?: (loaded: number, total: number) => void): Promise<number> {
+    return (await this.call({ type: 'load', id: this.nextId++, model }, onProgress)).ms;
+  }
+
+  /** Predict for one view; a newer request from the same view rejects this one with Superseded. */
+  async predict(view: string, model: string, history: History, request: PredictRequest,
+    onProgress?: (loaded: number, total: number) => void): Promise<{ prediction: Prediction; ms: number }> {
+    const r = await this.call({ type: 'predict', id: this.nextId++, view, model, history, request }, onProgress);
+    return { prediction: r.prediction!, ms: r.ms };
+  }
+
+  dispose(): void {
+    this.worker.terminate();
+  }
+}

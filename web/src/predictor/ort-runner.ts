@@ -1,0 +1,51 @@
+// GraphRunner over onnxruntime-web. Only the worker (and Node tests) import this module; the
+// runtime module itself is passed in, so the page never loads onnxruntime on the main thread.
+import type * as Ort from 'onnxruntime-web';
+import type { ModelEntry } from '../contract/types';
+import type { GraphRunner, Tensor } from './types';
+
+export type OrtModule = typeof Ort;
+/** Fetches a model file's bytes; `onProgress` reports bytes received so far. */
+export type FileLoader = (file: string, onProgress?: (loaded: number) => void) => Promise<Uint8Array>;
+
+export class OrtRunner implements GraphRunner {
+  private sessions = new Map<string, Promise<Ort.InferenceSession>>();
+
+  constructor(private readonly ort: OrtModule, private readonly entry: ModelEntry, private readonly load: FileLoader) {}
+
+  /** Create every graph's session now (lazily per model: called when a model is first used). */
+  async loadAll(onProgress?: (loaded: number, total: number) => void): Promise<void> {
+    const roles = Object.keys(this.entry.graphs);
+    const total = roles.reduce((s, r) => s + (this.entry.graphs[r].bytes ?? 0), 0);
+    const done = new Map<string, number>();
+    const report = () => onProgress?.([...done.values()].reduce((a, b) => a + b, 0), total);
+    await Promise.all(roles.map((role) => this.session(role, (n) => { done.set(role, n); report(); })));
+  }
+
+  private session(role: string, onProgress?: (loaded: number) => void): Promise<Ort.InferenceSession> {
+    let s = this.sessions.get(role);
+    if (!s) {
+      const spec = this.entry.graphs[role];
+      if (!spec) throw new Error(`model ${this.entry.id} has no graph '${role}'`);
+      s = this.load(spec.file, onProgress).then((bytes) => this.ort.InferenceSession.create(bytes, {
+        executionProviders: ['wasm'], graphOptimizationLevel: 'all',
+      }));
+      s.catch(() => this.sessions.delete(role)); // a failed load may be retried
+      this.sessions.set(role, s);
+    }
+    return s;
+  }
+
+  async run(role: string, feeds: Record<string, Tensor>): Promise<Record<string, Tensor>> {
+    const session = await this.session(role);
+    const inputs: Record<string, Ort.Tensor> = {};
+    for (const [name, t] of Object.entries(feeds)) inputs[name] = new this.ort.Tensor('float32', t.data, t.dims);
+    const out = await session.run(inputs);
+    const result: Record<string, Tensor> = {};
+    for (const spec of this.entry.graphs[role].outputs) {
+      const t = out[spec.name];
+      result[spec.name] = { data: t.data as Float32Array, dims: [...t.dims] };
+    }
+    return result;
+  }
+}

@@ -1,0 +1,111 @@
+// The predictor contract, twin of export/sample/request.py. Every method implements Predictor,
+// so the UI never branches on the method: a history and a request in, K futures out.
+import type { ModelEntry, Skeleton } from '../contract/types';
+
+export interface Tensor {
+  data: Float32Array;
+  dims: number[];
+}
+
+/** Runs one of a model's graphs (by its role in the manifest) on named float32 inputs. */
+export interface GraphRunner {
+  run(role: string, feeds: Record<string, Tensor>): Promise<Record<string, Tensor>>;
+}
+
+/** A motion window in the world frame: [frames, joints, 3] metres, root-centred horizontally. */
+export interface History {
+  positions: Float32Array;
+  frames: number;
+  joints: number;
+}
+
+export interface PredictRequest {
+  k: number;
+  seed: number;
+  actions?: string[];
+  horizonFrames?: number;
+  controls?: Record<string, number | boolean>;
+}
+
+export interface Segment {
+  start: number;
+  length: number;
+  action?: string;
+  stopped?: boolean;
+  smoothness?: number;
+  flagged?: boolean;
+}
+
+export interface SampleInfo {
+  length: number;
+  /** False when a variable-length sample never met its stop rule and kept the maximum length. */
+  stopped: boolean;
+  segments: Segment[];
+  /** Frames to mark on the timeline (e.g. keypose times), relative to the future's first frame. */
+  marks?: number[];
+  /** Discrete choices the sampler made (e.g. keypose cluster labels), for display and test vectors. */
+  labels?: number[];
+}
+
+/** A per-sample curve for a small plot, e.g. WAT's variance v_i with delta and T_min marked. */
+export interface Curve {
+  id: string;
+  title: string;
+  /** One series per sample, indexed by future frame. */
+  series: Float32Array[];
+  /** Horizontal rules (e.g. the stop threshold delta). */
+  levels?: { label: string; value: number }[];
+  /** Vertical rules (e.g. the minimum length T_min). */
+  frames?: { label: string; frame: number }[];
+  log?: boolean;
+}
+
+/** Poses to show as ghost skeletons at given future frames, per sample (e.g. keypose centres). */
+export interface Ghosts {
+  frames: number[][];
+  /** Per sample: [frames.length, joints, 3]. */
+  poses: Float32Array[];
+}
+
+export interface Prediction {
+  k: number;
+  /** Frames per future (the longest sample); shorter samples hold their last pose. */
+  frames: number;
+  joints: number;
+  /** [k, frames, joints, 3] metres, world frame. */
+  futures: Float32Array;
+  lengths: Int32Array;
+  samples: SampleInfo[];
+  notes: string[];
+  curves?: Curve[];
+  ghosts?: Ghosts;
+  /** Short measured read-outs, e.g. { label: 'diversity', value: 0.41, unit: 'm' }. */
+  readouts?: { label: string; value: number; unit?: string }[];
+}
+
+export interface Predictor {
+  readonly entry: ModelEntry;
+  predict(history: History, request: PredictRequest, isCancelled?: () => boolean): Promise<Prediction>;
+}
+
+export interface PredictorContext {
+  entry: ModelEntry;
+  skeleton: Skeleton;
+  actions: string[];
+  runner: GraphRunner;
+}
+
+export class PredictError extends Error {
+  constructor(message: string) {
+    super(message);
+    this.name = 'PredictError';
+  }
+}
+
+/** Thrown between graph calls when a newer request from the same view replaced this one. */
+export class Superseded extends Error {
+  constructor() {
+    super('superseded by a newer request');
+    this.name = 'Superseded';
+  }
+}

@@ -1,0 +1,127 @@
+// The predictor worker: owns onnxruntime-web and every session, runs one job at a time.
+// A new request from a view supersedes that view's queued or running request; requests from
+// other views wait their turn.
+import type { Manifest } from '../contract/types';
+import { createPredictor } from './factory';
+import { OrtRunner, type OrtModule } from './ort-runner';
+import type { ErrorKind, FromWorker, ToWorker } from './protocol';
+import { PredictError, Superseded, type Predictor } from './types';
+
+interface Job { msg: Extract<ToWorker, { type: 'load' | 'predict' }>; cancelled: boolean }
+
+const scope = self as unknown as DedicatedWorkerGlobalScope;
+let manifest: Manifest | null = null;
+let baseUrl = '';
+let ortModule: Promise<OrtModule> | null = null;
+const predictors = new Map<string, { predictor: Predictor; runner: OrtRunner }>();
+const queue: Job[] = [];
+let running: Job | null = null;
+
+function post(msg: FromWorker, transfer: Transferable[] = []): void {
+  scope.postMessage(msg, transfer);
+}
+
+function runtime(): Promise<OrtModule> {
+  ortModule ??= import('onnxruntime-web/wasm').then((ort) => {
+    ort.env.wasm.numThreads = 1; // no COOP/COEP needed; on 2 cores threads were slower
+    ort.env.logLevel = 'error';
+    return ort as unknown as OrtModule;
+  });
+  return ortModule;
+}
+
+async function fetchBytes(file: string, onProgress?: (n: number) => void): Promise<Uint8Array> {
+  const url = new URL(`models/${file}`, baseUrl).href;
+  let res: Response;
+  try {
+    res = await fetch(url);
+  } catch (err) {
+    throw new Error(`models/${file} could not be loaded (${(err as Error).message})`);
+  }
+  if (!res.ok) throw new Error(`models/${file} could not be loaded (HTTP ${res.status})`);
+  if (!res.body) return new Uint8Array(await res.arrayBuffer());
+  const reader = res.body.getReader();
+  const chunks: Uint8Array[] = [];
+  let n = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    chunks.push(value);
+    n += value.length;
+    onProgress?.(n);
+  }
+  const out = new Uint8Array(n);
+  let o = 0;
+  for (const c of chunks) { out.set(c, o); o += c.length; }
+  return out;
+}
+
+async function predictorFor(model: string, id: number): Promise<{ predictor: Predictor; runner: OrtRunner }> {
+  let p = predictors.get(model);
+  if (!p) {
+    if (!manifest) throw new Error('the worker has no manifest yet');
+    const entry = manifest.models.find((m) => m.id === model);
+    if (!entry) throw new PredictError(`unknown model '${model}'`);
+    const runner = new OrtRunner(await runtime(), entry, fetchBytes);
+    const t0 = performance.now();
+    await runner.loadAll((loaded, total) => post({ type: 'progress', id, model, loaded, total }));
+    const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, runner });
+    p = { predictor, runner };
+    predictors.set(model, p);
+    post({ type: 'loaded', id, model, ms: performance.now() - t0 });
+  }
+  return p;
+}
+
+async function execute(job: Job): Promise<void> {
+  const { msg } = job;
+  if (msg.type === 'load') {
+    await predictorFor(msg.model, msg.id);
+    return;
+  }
+  const { predictor } = await predictorFor(msg.model, msg.id);
+  const t0 = performance.now();
+  const prediction = await predictor.predict(msg.history, msg.request, () => job.cancelled);
+  post({ type: 'result', id: msg.id, prediction, ms: performance.now() - t0 }, [prediction.futures.buffer]);
+}
+
+function kindOf(err: unknown, job: Job): ErrorKind {
+  if (err instanceof Superseded) return 'superseded';
+  if (err instanceof PredictError) return 'predict';
+  return job.msg.type === 'load' || !predictors.has(job.msg.model) ? 'load' : 'internal';
+}
+
+async function pump(): Promise<void> {
+  if (running) return;
+  while (queue.length) {
+    const job = queue.shift()!;
+    running = job;
+    try {
+      await execute(job);
+    } catch (err) {
+      post({ type: 'error', id: job.msg.id, kind: kindOf(err, job), message: (err as Error).message ?? String(err) });
+    }
+    running = null;
+  }
+}
+
+scope.onmessage = (ev: MessageEvent<ToWorker>) => {
+  const msg = ev.data;
+  if (msg.type === 'init') {
+    manifest = msg.manifest;
+    baseUrl = msg.baseUrl;
+    return;
+  }
+  if (msg.type === 'predict') {
+    for (let i = queue.length - 1; i >= 0; i--) {
+      const q = queue[i].msg;
+      if (q.type === 'predict' && q.view === msg.view) {
+        queue.splice(i, 1);
+        post({ type: 'error', id: q.id, kind: 'superseded', message: 'superseded by a newer request' });
+      }
+    }
+    if (running && running.msg.type === 'predict' && running.msg.view === msg.view) running.cancelled = true;
+  }
+  queue.push({ msg, cancelled: false });
+  void pump();
+};
