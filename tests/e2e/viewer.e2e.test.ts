@@ -1,0 +1,241 @@
+// The clip browser in a real Chromium: loads, plays, draws a figure, obeys the keyboard, and
+// shows contract errors and missing WebGL on the page instead of going blank.
+import { readFileSync } from 'node:fs';
+import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
+import type { Page } from 'playwright-core';
+import { openBrowser, type BrowserSession } from './browser';
+import { pixelStats } from './pixels';
+
+const baseUrl = inject('baseUrl');
+const CLIPS = 20;
+const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
+
+function frameOf(readout: string | null): number {
+  const m = /\(frame (\d+)\)/.exec(readout ?? '');
+  if (!m) throw new Error(`no frame in read-out "${readout}"`);
+  return Number(m[1]);
+}
+
+const readout = (page: Page) => page.getByTestId('time').textContent();
+const scrubber = (page: Page) => page.getByTestId('scrubber').inputValue();
+const clipReady = (page: Page, name: string) =>
+  page.waitForSelector(`body[data-current-clip="${name}"][data-clip-status="ready"]`, { state: 'attached', timeout: 60_000 });
+
+describe('clip viewer', () => {
+  let session: BrowserSession;
+  let page: Page;
+
+  beforeAll(async () => {
+    session = await openBrowser();
+    page = session.page;
+    await page.goto(baseUrl);
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it('lists the clips, test clips first, and selects walk', async () => {
+    await page.locator('.clip-button').first().waitFor();
+    expect(await page.locator('.clip-button').count()).toBe(CLIPS);
+    const firstGroup = await page.locator('.clip-group').first().locator('.role-badge').allTextContents();
+    expect(new Set(firstGroup)).toEqual(new Set(['test']));
+    await clipReady(page, 'walk');
+    expect(await page.locator('[data-clip="walk"]').getAttribute('aria-current')).toBe('true');
+    const info = page.getByTestId('clip-info');
+    expect(await info.locator('[data-field="name"]').textContent()).toBe('walk');
+    expect(await info.locator('[data-field="fps"]').textContent()).toBe('30');
+    expect(await info.locator('[data-field="licence"]').textContent()).toMatch(/^Licence: .*DeepMimic/);
+  });
+
+  it('plays walk: the read-out and the scrubber advance', async () => {
+    const t0 = await readout(page);
+    expect(t0).toMatch(/^t = \d+\.\d\d s \/ 1\.27 s \(frame \d+\)$/);
+    await expect.poll(() => readout(page), { timeout: 30_000 }).not.toBe(t0);
+    const s0 = await scrubber(page);
+    await expect.poll(() => scrubber(page), { timeout: 30_000 }).not.toBe(s0);
+    expect(await page.getByTestId('play').getAttribute('aria-label')).toBe('Pause');
+  });
+
+  it('draws the figure: left and right limbs in their colours on the grid', async () => {
+    // Pause for a steady picture; two frames let the last render land.
+    await page.getByTestId('play').click();
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    await session.screenshot('viewer-walk.png');
+    const stats = await pixelStats(session.context, await session.screenshot('viewer-walk-stage.png', page.locator('#viewer')));
+    expect(stats.distinct).toBeGreaterThan(10);
+    expect(stats.foreground).toBeGreaterThan(3000);
+    expect(stats.warm).toBeGreaterThan(300);
+    expect(stats.cool).toBeGreaterThan(300);
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('switches to the test clip walker_walk_forward and plays it', async () => {
+    await page.locator('[data-clip="walker_walk_forward"]').click();
+    await clipReady(page, 'walker_walk_forward');
+    expect(await page.locator('[data-clip="walker_walk_forward"]').getAttribute('aria-current')).toBe('true');
+    expect(await page.locator('[data-clip="walk"]').getAttribute('aria-current')).toBeNull();
+    expect(await page.getByTestId('clip-info').locator('[data-field="split"]').textContent()).toBe('test');
+    const t0 = await readout(page);
+    expect(t0).toContain('/ 1.23 s');
+    await expect.poll(() => readout(page), { timeout: 30_000 }).not.toBe(t0);
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('Space pauses, arrows step, Home/End jump, L switches layout', async () => {
+    await page.evaluate(() => (document.activeElement as HTMLElement | null)?.blur());
+    await page.keyboard.press('Space');
+    await expect.poll(() => page.getByTestId('play').getAttribute('aria-label')).toBe('Play');
+    const paused = frameOf(await readout(page));
+    await page.waitForTimeout(600); // paused means nothing moves, which only time can show
+    expect(frameOf(await readout(page))).toBe(paused);
+
+    await page.keyboard.press('ArrowRight');
+    expect(frameOf(await readout(page))).toBe((paused + 1) % 37);
+    expect(Number(await scrubber(page))).toBe((paused + 1) % 37);
+    await page.keyboard.press('Home');
+    expect(frameOf(await readout(page))).toBe(0);
+    await page.keyboard.press('Shift+ArrowRight');
+    expect(frameOf(await readout(page))).toBe(10);
+    await page.keyboard.press('ArrowLeft');
+    expect(frameOf(await readout(page))).toBe(9);
+    await page.keyboard.press('End');
+    expect(frameOf(await readout(page))).toBe(36);
+
+    await page.keyboard.press(']');
+    expect(await page.getByLabel('Playback speed').inputValue()).toBe('1.25');
+    await page.keyboard.press('[');
+    await page.keyboard.press('[');
+    expect(await page.getByLabel('Playback speed').inputValue()).toBe('0.75');
+
+    expect(await page.locator('input[name="layout"][value="overlay"]').isChecked()).toBe(true);
+    await page.keyboard.press('l');
+    expect(await page.locator('input[name="layout"][value="side"]').isChecked()).toBe(true);
+    await page.keyboard.press('l');
+    expect(await page.locator('input[name="layout"][value="overlay"]').isChecked()).toBe(true);
+
+    await page.keyboard.press('Space');
+    await expect.poll(() => page.getByTestId('play').getAttribute('aria-label')).toBe('Pause');
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+});
+
+describe('many tracks', () => {
+  it('draws history, samples and truth overlaid and side by side', async () => {
+    const session = await openBrowser();
+    try {
+      const { page } = session;
+      await page.goto(baseUrl);
+      await clipReady(page, 'walk');
+      // Stand-in predictions cut from the clip itself: the viewer does not care where tracks come from.
+      await page.evaluate(() => {
+        const app = window.motionFutures!;
+        const m = app.clips.current!;
+        const stride = m.joints * 3;
+        const n = 10;
+        const cut = (from: number, to: number, dx = 0) => {
+          const p = m.positions.slice(from * stride, to * stride);
+          for (let i = 0; i < p.length; i += 3) p[i] += dx;
+          return p;
+        };
+        const tracks = [
+          { id: 'history', role: 'history' as const, positions: cut(0, n), frames: n, joints: m.joints, startFrame: 0 },
+          { id: 'truth', role: 'truth' as const, positions: cut(n, m.frames), frames: m.frames - n, joints: m.joints, startFrame: n },
+          ...Array.from({ length: 8 }, (_, k) => ({
+            id: `s${k}`, role: 'prediction' as const, sample: k, positions: cut(n, m.frames - k, 0.04 * (k - 4)),
+            frames: m.frames - n - k, joints: m.joints, startFrame: n,
+          })),
+        ];
+        app.player.pause();
+        app.view.setTracks(tracks, m.skeleton);
+        app.view.setSelected(2);
+        app.player.load(m.frames, m.fps, 30);
+      });
+      const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+      await settle();
+      const overlay = await pixelStats(session.context, await session.screenshot('viewer-samples-overlay.png', page.locator('#viewer')));
+      await page.evaluate(() => (document.activeElement as HTMLElement | null)?.blur());
+      await page.keyboard.press('l');
+      await settle();
+      const side = await pixelStats(session.context, await session.screenshot('viewer-samples-side.png', page.locator('#viewer')));
+      for (const stats of [overlay, side]) {
+        expect(stats.warm).toBeGreaterThan(100);
+        expect(stats.cool).toBeGreaterThan(100);
+      }
+      expect(side.distinct).toBeGreaterThan(overlay.distinct / 2);
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
+describe('phone width, dark scheme', () => {
+  it('stacks the panel under the stage and still draws the figure', async () => {
+    const session = await openBrowser({ viewport: { width: 390, height: 844 }, colorScheme: 'dark' });
+    try {
+      const { page } = session;
+      await page.goto(baseUrl);
+      await clipReady(page, 'walk');
+      await page.getByTestId('play').click();
+      const stage = (await page.locator('#viewer').boundingBox())!;
+      const panel = (await page.locator('#panel').boundingBox())!;
+      expect(panel.y).toBeGreaterThanOrEqual(stage.y + stage.height);
+      expect(stage.width).toBeGreaterThan(300);
+      await session.screenshot('viewer-phone-dark.png', page);
+      const stats = await pixelStats(session.context, await session.screenshot('viewer-phone-dark-stage.png', page.locator('#viewer')));
+      expect(stats.warm).toBeGreaterThan(100);
+      expect(stats.cool).toBeGreaterThan(100);
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
+describe('failures stay visible', () => {
+  it('an invalid walk.json names the file in the banner and the page stays usable', async () => {
+    const session = await openBrowser();
+    try {
+      const { page } = session;
+      const text = readFileSync(new URL('../../public/clips/walk.json', import.meta.url), 'utf8');
+      const at = text.indexOf('"positions"');
+      const broken = text.slice(0, at) + text.slice(at).replace(/-?\d+(\.\d+)?([eE][-+]?\d+)?/, 'NaN');
+      await page.route('**/clips/walk.json', (route) => route.fulfill({ status: 200, contentType: 'application/json', body: broken }));
+      await page.goto(baseUrl);
+      await page.waitForSelector('body[data-current-clip="walk"][data-clip-status="error"]', { state: 'attached', timeout: 60_000 });
+      const banner = page.locator('.message-error');
+      await expect.poll(() => banner.first().textContent()).toMatch(/walk\.json.*not valid JSON/);
+      expect(await page.locator('.clip-button').count()).toBe(CLIPS);
+      await session.screenshot('viewer-invalid-clip.png');
+
+      await page.locator('[data-clip="run"]').click();
+      await clipReady(page, 'run');
+      expect(await banner.count()).toBe(0); // the clip's error is cleared by a good clip
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+
+  it('without WebGL the viewer says so and the rest of the page works', async () => {
+    const session = await openBrowser();
+    try {
+      const { page } = session;
+      await page.addInitScript(() => {
+        const original = HTMLCanvasElement.prototype.getContext;
+        HTMLCanvasElement.prototype.getContext = function (this: HTMLCanvasElement, type: string, ...rest: unknown[]) {
+          if (type === 'webgl' || type === 'webgl2' || type === 'experimental-webgl') return null;
+          return (original as (...a: unknown[]) => unknown).call(this, type, ...rest);
+        } as typeof original;
+      });
+      await page.goto(baseUrl);
+      await clipReady(page, 'walk');
+      await expect.poll(() => page.locator('.viewer-notice').textContent()).toMatch(/WebGL is not available/);
+      expect(await page.locator('.viewer-notice').isVisible()).toBe(true);
+      expect(await page.locator('.clip-button').count()).toBe(CLIPS);
+      const t0 = await readout(page);
+      await expect.poll(() => readout(page), { timeout: 30_000 }).not.toBe(t0);
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
