@@ -18,6 +18,11 @@ J = SKELETON.num_joints
 class _DirectMethod(Method):
     """history [batch, N, J, 3] -> future [batch, T, J, 3], one deterministic future per history."""
 
+    def controls(self, actions: list[str]) -> list[dict]:
+        # Longer horizons repeat the graph on its own output (export/sample/direct.py).
+        return [{"id": "horizon", "type": "number", "label": "Horizon (s)", "min": 1, "max": 5, "step": 0.5,
+                 "default": 2, "help": "How far to predict; past 1 s the model is applied to its own output."}]
+
     def graphs(self, model: nn.Module) -> dict[str, GraphDef]:
         example = torch.randn(2, self.history_frames, J, 3)
         return {"predict": GraphDef(

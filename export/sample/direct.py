@@ -5,14 +5,14 @@ import numpy as np
 
 from .canonical import from_canonical, to_canonical
 from .predictor import Predictor
-from .request import Prediction, Request
+from .request import Prediction, Request, horizon_frames
 
 
 class DirectPredictor(Predictor):
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         n = self.params["history_frames"]
         step = self.params["future_frames"]
-        horizon = req.horizon_frames or step
+        horizon = horizon_frames(req, self.entry, self.manifest["fps"])
         frames = history[-n:].astype(np.float32)
         out = []
         while sum(len(o) for o in out) < horizon:

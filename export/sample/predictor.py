@@ -26,7 +26,7 @@ class Predictor:
         """history [frames, J, 3] in the world frame -> K futures in the same frame."""
         joints = len(self.manifest["skeleton"]["joints"])
         history = check_history(history, self.params["history_frames"], joints)
-        check_request(req, self.entry, self.manifest["actions"])
+        check_request(req, self.entry, self.manifest["actions"], self.manifest["fps"])
         return self._predict(history, req)
 
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:

@@ -70,7 +70,19 @@ def check_history(history: np.ndarray, needed: int, joints: int) -> np.ndarray:
     return history
 
 
-def check_request(req: Request, entry: dict, actions: list[str]) -> None:
+# Controls that are fields of the request rather than entries of `controls`.
+REQUEST_FIELDS = ("k", "actions", "horizon")
+
+
+def horizon_frames(req: Request, entry: dict, fps: float) -> int:
+    """Frames to predict: the request's, else the `horizon` control's default (seconds), else one call."""
+    if req.horizon_frames is not None:
+        return int(req.horizon_frames)
+    spec = next((c for c in entry["controls"] if c["id"] == "horizon"), None)
+    return round(spec["default"] * fps) if spec else int(entry["params"]["future_frames"])
+
+
+def check_request(req: Request, entry: dict, actions: list[str], fps: float = 30.0) -> None:
     controls = {c["id"]: c for c in entry["controls"]}
     if "k" in controls:
         if not (isinstance(req.k, int) and 1 <= req.k <= MAX_K):
@@ -84,8 +96,15 @@ def check_request(req: Request, entry: dict, actions: list[str]) -> None:
             raise PredictError(f"unknown action {a!r}; this model knows {', '.join(actions)}")
     if "actions" in controls and not req.actions:
         raise PredictError("the action sequence is empty: add at least one action")
+    if req.horizon_frames is not None:
+        spec = controls.get("horizon")
+        lo, hi = (round(spec["min"] * fps), round(spec["max"] * fps)) if spec else (1, entry["params"]["future_frames"])
+        if not (isinstance(req.horizon_frames, int) and lo <= req.horizon_frames <= hi):
+            raise PredictError(f"the horizon must be {lo} to {hi} frames, got {req.horizon_frames}")
     for cid, value in req.controls.items():
         spec = controls.get(cid)
+        if cid in REQUEST_FIELDS:
+            raise PredictError(f"{cid!r} is a field of the request, not a control value")
         if spec is None:
             raise PredictError(f"{entry['label']} has no control {cid!r}")
         if spec["type"] in ("int", "number"):

@@ -7,6 +7,8 @@ import { openBrowser, type BrowserSession } from './browser';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
+// The viewer tests start on walk and leave predicting to tests/e2e/predict.e2e.test.ts.
+const viewerUrl = `${baseUrl}?clip=walk&predict=0`;
 const CLIPS = 20;
 const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
 
@@ -28,7 +30,7 @@ describe('clip viewer', () => {
   beforeAll(async () => {
     session = await openBrowser();
     page = session.page;
-    await page.goto(baseUrl);
+    await page.goto(viewerUrl);
   });
   afterAll(async () => { await session?.close(); });
 
@@ -122,7 +124,7 @@ describe('many tracks', () => {
     const session = await openBrowser();
     try {
       const { page } = session;
-      await page.goto(baseUrl);
+      await page.goto(viewerUrl);
       await clipReady(page, 'walk');
       // Stand-in predictions cut from the clip itself: the viewer does not care where tracks come from.
       await page.evaluate(() => {
@@ -172,7 +174,7 @@ describe('phone width, dark scheme', () => {
     const session = await openBrowser({ viewport: { width: 390, height: 844 }, colorScheme: 'dark' });
     try {
       const { page } = session;
-      await page.goto(baseUrl);
+      await page.goto(viewerUrl);
       await clipReady(page, 'walk');
       await page.getByTestId('play').click();
       const stage = (await page.locator('#viewer').boundingBox())!;
@@ -199,7 +201,7 @@ describe('failures stay visible', () => {
       const at = text.indexOf('"positions"');
       const broken = text.slice(0, at) + text.slice(at).replace(/-?\d+(\.\d+)?([eE][-+]?\d+)?/, 'NaN');
       await page.route('**/clips/walk.json', (route) => route.fulfill({ status: 200, contentType: 'application/json', body: broken }));
-      await page.goto(baseUrl);
+      await page.goto(viewerUrl);
       await page.waitForSelector('body[data-current-clip="walk"][data-clip-status="error"]', { state: 'attached', timeout: 60_000 });
       const banner = page.locator('.message-error');
       await expect.poll(() => banner.first().textContent()).toMatch(/walk\.json.*not valid JSON/);
@@ -226,7 +228,7 @@ describe('failures stay visible', () => {
           return (original as (...a: unknown[]) => unknown).call(this, type, ...rest);
         } as typeof original;
       });
-      await page.goto(baseUrl);
+      await page.goto(viewerUrl);
       await clipReady(page, 'walk');
       await expect.poll(() => page.locator('.viewer-notice').textContent()).toMatch(/WebGL is not available/);
       expect(await page.locator('.viewer-notice').isVisible()).toBe(true);

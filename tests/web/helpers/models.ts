@@ -20,5 +20,5 @@ export function nodePredictor(manifest: Manifest, id: string): Predictor {
   const entry = manifest.models.find((m) => m.id === id);
   if (!entry) throw new Error(`no model ${id}`);
   const runner = new OrtRunner(ort as unknown as OrtModule, entry, async (file) => new Uint8Array(readFileSync(new URL(file, modelsDir))));
-  return createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, runner });
+  return createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner });
 }

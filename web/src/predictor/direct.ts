@@ -1,7 +1,7 @@
 // Predictor for the deterministic baselines (zero-velocity, regression GRU), twin of
 // export/sample/direct.py: one fixed-horizon graph call, repeated on its own output.
 import { fromCanonical, toCanonical } from './canonical';
-import { checkHistory, checkRequest } from './request';
+import { checkHistory, checkRequest, horizonFrames } from './request';
 import { Superseded, type History, type Prediction, type PredictRequest, type Predictor, type PredictorContext } from './types';
 
 export class DirectPredictor implements Predictor {
@@ -17,8 +17,8 @@ export class DirectPredictor implements Predictor {
     const n = entry.params.history_frames;
     const step = entry.params.future_frames;
     checkHistory(history, n, j);
-    checkRequest(req, entry, this.ctx.actions);
-    const horizon = req.horizonFrames ?? step;
+    checkRequest(req, entry, this.ctx.actions, this.ctx.fps);
+    const horizon = horizonFrames(req, entry, this.ctx.fps);
     const stride = j * 3;
     let frames = history.positions.slice((history.frames - n) * stride);
     const out = new Float32Array(Math.ceil(horizon / step) * step * stride);

@@ -17,7 +17,17 @@ export function checkHistory(h: History, needed: number, joints: number): void {
   }
 }
 
-export function checkRequest(req: PredictRequest, entry: ModelEntry, actions: string[]): void {
+/** Controls that are fields of the request rather than entries of `controls`. */
+export const REQUEST_FIELDS = ['k', 'actions', 'horizon'];
+
+/** Frames to predict: the request's, else the `horizon` control's default (seconds), else one call. */
+export function horizonFrames(req: PredictRequest, entry: ModelEntry, fps: number): number {
+  if (req.horizonFrames !== undefined) return req.horizonFrames;
+  const spec = entry.controls.find((c) => c.id === 'horizon');
+  return spec ? Math.round((spec.default as number) * fps) : entry.params.future_frames;
+}
+
+export function checkRequest(req: PredictRequest, entry: ModelEntry, actions: string[], fps = 30): void {
   const controls = new Map(entry.controls.map((c) => [c.id, c]));
   if (controls.has('k')) {
     if (!Number.isInteger(req.k) || req.k < 1 || req.k > MAX_K) {
@@ -35,8 +45,17 @@ export function checkRequest(req: PredictRequest, entry: ModelEntry, actions: st
   if (controls.has('actions') && !(req.actions ?? []).length) {
     throw new PredictError('the action sequence is empty: add at least one action');
   }
+  if (req.horizonFrames !== undefined) {
+    const spec = controls.get('horizon');
+    const lo = spec ? Math.round(spec.min! * fps) : 1;
+    const hi = spec ? Math.round(spec.max! * fps) : entry.params.future_frames;
+    if (!Number.isInteger(req.horizonFrames) || req.horizonFrames < lo || req.horizonFrames > hi) {
+      throw new PredictError(`the horizon must be ${lo} to ${hi} frames, got ${req.horizonFrames}`);
+    }
+  }
   for (const [id, value] of Object.entries(req.controls ?? {})) {
     const spec = controls.get(id);
+    if (REQUEST_FIELDS.includes(id)) throw new PredictError(`'${id}' is a field of the request, not a control value`);
     if (!spec) throw new PredictError(`${entry.label} has no control '${id}'`);
     if (spec.type === 'int' || spec.type === 'number') {
       if (typeof value !== 'number' || !Number.isFinite(value)) throw new PredictError(`${spec.label} must be a number, got ${value}`);

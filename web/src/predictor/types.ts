@@ -92,6 +92,7 @@ export interface PredictorContext {
   entry: ModelEntry;
   skeleton: Skeleton;
   actions: string[];
+  fps: number;
   runner: GraphRunner;
 }
 

@@ -63,12 +63,10 @@ async function predictorFor(model: string, id: number): Promise<{ predictor: Pre
     const entry = manifest.models.find((m) => m.id === model);
     if (!entry) throw new PredictError(`unknown model '${model}'`);
     const runner = new OrtRunner(await runtime(), entry, fetchBytes);
-    const t0 = performance.now();
     await runner.loadAll((loaded, total) => post({ type: 'progress', id, model, loaded, total }));
-    const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, runner });
+    const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner });
     p = { predictor, runner };
     predictors.set(model, p);
-    post({ type: 'loaded', id, model, ms: performance.now() - t0 });
   }
   return p;
 }
@@ -76,7 +74,9 @@ async function predictorFor(model: string, id: number): Promise<{ predictor: Pre
 async function execute(job: Job): Promise<void> {
   const { msg } = job;
   if (msg.type === 'load') {
+    const t0 = performance.now();
     await predictorFor(msg.model, msg.id);
+    post({ type: 'loaded', id: msg.id, model: msg.model, ms: performance.now() - t0 });
     return;
   }
   const { predictor } = await predictorFor(msg.model, msg.id);

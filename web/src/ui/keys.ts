@@ -6,7 +6,9 @@ export type KeyAction =
   | { kind: 'speed'; direction: 1 | -1 }
   | { kind: 'first' }
   | { kind: 'last' }
-  | { kind: 'layout' };
+  | { kind: 'layout' }
+  | { kind: 'predict' }
+  | { kind: 'sample'; index: number | null };
 
 export interface KeyPress {
   key: string;
@@ -57,6 +59,10 @@ export function keyAction(e: KeyPress, target: FocusTarget | null): KeyAction | 
     case 'Home': return { kind: 'first' };
     case 'End': return { kind: 'last' };
     case 'l': case 'L': return { kind: 'layout' };
-    default: return null;
+    case 'p': case 'P': return { kind: 'predict' };
+    case '0': return { kind: 'sample', index: null };
+    default:
+      if (/^[1-9]$/.test(e.key)) return { kind: 'sample', index: Number(e.key) - 1 };
+      return null;
   }
 }

@@ -1,0 +1,73 @@
+// The predictor's inputs: model, history window, seed, the model's own controls, and Predict.
+import type { Manifest, ModelEntry } from '../contract/types';
+import { MAX_SEED } from '../rng/prng';
+import { mountControls, type ControlsView } from './controls';
+import { el } from './dom';
+import { mountHistoryPicker, type HistoryPicker } from './history-picker';
+
+export interface PredictPanel {
+  model(): ModelEntry;
+  history: HistoryPicker;
+  controls(): ControlsView;
+  seed(): number;
+  setBusy(text: string | null, progress?: number): void;
+  setStatus(text: string): void;
+}
+
+export function mountPredictPanel(container: HTMLElement, manifest: Manifest, initialModel: string | undefined, handlers: {
+  onModel(entry: ModelEntry): void; onPredict(): void; onChange(): void;
+}): PredictPanel {
+  const models = manifest.models;
+  const select = el('select', { id: 'model-select' }, ...models.map((m) => el('option', { value: m.id }, m.label)));
+  if (initialModel && models.some((m) => m.id === initialModel)) select.value = initialModel;
+  const description = el('p', { class: 'muted model-description' });
+  const history = mountHistoryPicker(handlers.onChange);
+  const seedInput = el('input', { type: 'number', id: 'seed', min: 0, max: MAX_SEED, step: 1, value: '1' });
+  const dice = el('button', { type: 'button', class: 'text-button', title: 'A new random seed' }, 'New seed');
+  const controlsBox = el('div', {});
+  const predict = el('button', { type: 'button', class: 'primary-button', id: 'predict' }, 'Predict');
+  const progress = el('progress', { class: 'load-progress', max: 1, hidden: true });
+  const status = el('p', { class: 'muted predict-status', role: 'status', 'aria-live': 'polite' });
+  let controls: ControlsView = mountControls([], manifest.actions, handlers.onChange);
+
+  const current = () => models.find((m) => m.id === select.value) ?? models[0];
+  const showModel = () => {
+    const m = current();
+    description.textContent = m.description ?? '';
+    controls = mountControls(m.controls, manifest.actions, handlers.onChange);
+    controlsBox.replaceChildren(controls.root);
+    handlers.onModel(m);
+  };
+  select.addEventListener('change', showModel);
+  seedInput.addEventListener('change', () => {
+    const v = Math.max(0, Math.min(MAX_SEED, Math.round(Number(seedInput.value) || 0)));
+    seedInput.value = String(v);
+    handlers.onChange();
+  });
+  dice.addEventListener('click', () => { seedInput.value = String(Math.floor(Math.random() * MAX_SEED)); handlers.onChange(); });
+  predict.addEventListener('click', () => handlers.onPredict());
+
+  container.replaceChildren(
+    el('div', { class: 'control-row' }, el('label', { for: 'model-select' }, 'Model'), select, description),
+    history.root,
+    el('div', { class: 'control-row' }, el('label', { for: 'seed' }, 'Seed'), el('div', { class: 'range-row' }, seedInput, dice)),
+    controlsBox,
+    el('div', { class: 'predict-row' }, predict, el('span', { class: 'muted' }, 'or press P')),
+    progress, status,
+  );
+  showModel();
+  return {
+    model: current,
+    history,
+    controls: () => controls,
+    seed: () => Number(seedInput.value),
+    setBusy(text, fraction) {
+      predict.disabled = text !== null && fraction !== undefined;
+      progress.hidden = fraction === undefined;
+      if (fraction !== undefined) progress.value = fraction;
+      if (text !== null) status.textContent = text;
+      document.body.dataset.predictStatus = text === null ? 'idle' : 'busy';
+    },
+    setStatus(text) { status.textContent = text; },
+  };
+}
