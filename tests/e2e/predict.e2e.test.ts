@@ -104,4 +104,20 @@ describe('prediction failures stay visible', () => {
       await session.close();
     }
   });
+
+  it('without WebAssembly the page says models cannot run, and the clips still play', async () => {
+    const session = await openBrowser();
+    try {
+      const { page } = session;
+      await page.addInitScript(() => { delete (window as { WebAssembly?: unknown }).WebAssembly; });
+      await page.goto(baseUrl);
+      await page.waitForSelector('body[data-predict-status="error"]', { state: 'attached', timeout: 60_000 });
+      await expect.poll(() => page.locator('.message-error').first().textContent()).toMatch(/WebAssembly is not available/);
+      await page.locator('[data-clip="run"]').click();
+      await page.waitForSelector('body[data-current-clip="run"][data-clip-status="ready"]', { state: 'attached' });
+      expect(session.problems.pageErrors).toEqual([]);
+    } finally {
+      await session.close();
+    }
+  });
 });

@@ -5,17 +5,17 @@ import type { Manifest } from '../contract/types';
 import { createPredictor } from './factory';
 import { OrtRunner, type OrtModule } from './ort-runner';
 import type { ErrorKind, FromWorker, ToWorker } from './protocol';
+import { Scheduler, type Job as QueuedJob } from './scheduler';
 import { PredictError, Superseded, type Predictor } from './types';
 
-interface Job { msg: Extract<ToWorker, { type: 'load' | 'predict' }>; cancelled: boolean }
+interface Job extends QueuedJob { msg: Extract<ToWorker, { type: 'load' | 'predict' }> }
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
 let manifest: Manifest | null = null;
 let baseUrl = '';
 let ortModule: Promise<OrtModule> | null = null;
 const predictors = new Map<string, { predictor: Predictor; runner: OrtRunner }>();
-const queue: Job[] = [];
-let running: Job | null = null;
+const scheduler = new Scheduler<Job>();
 
 function post(msg: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(msg, transfer);
@@ -91,17 +91,11 @@ function kindOf(err: unknown, job: Job): ErrorKind {
   return job.msg.type === 'load' || !predictors.has(job.msg.model) ? 'load' : 'internal';
 }
 
-async function pump(): Promise<void> {
-  if (running) return;
-  while (queue.length) {
-    const job = queue.shift()!;
-    running = job;
-    try {
-      await execute(job);
-    } catch (err) {
-      post({ type: 'error', id: job.msg.id, kind: kindOf(err, job), message: (err as Error).message ?? String(err) });
-    }
-    running = null;
+async function run(job: Job): Promise<void> {
+  try {
+    await execute(job);
+  } catch (err) {
+    post({ type: 'error', id: job.id, kind: kindOf(err, job), message: (err as Error).message ?? String(err) });
   }
 }
 
@@ -112,16 +106,9 @@ scope.onmessage = (ev: MessageEvent<ToWorker>) => {
     baseUrl = msg.baseUrl;
     return;
   }
-  if (msg.type === 'predict') {
-    for (let i = queue.length - 1; i >= 0; i--) {
-      const q = queue[i].msg;
-      if (q.type === 'predict' && q.view === msg.view) {
-        queue.splice(i, 1);
-        post({ type: 'error', id: q.id, kind: 'superseded', message: 'superseded by a newer request' });
-      }
-    }
-    if (running && running.msg.type === 'predict' && running.msg.view === msg.view) running.cancelled = true;
+  const job: Job = { id: msg.id, view: msg.type === 'predict' ? msg.view : undefined, cancelled: false, msg };
+  for (const old of scheduler.push(job)) {
+    post({ type: 'error', id: old.id, kind: 'superseded', message: 'superseded by a newer request' });
   }
-  queue.push({ msg, cancelled: false });
-  void pump();
+  void scheduler.drain(run);
 };
