@@ -9,13 +9,14 @@ PORT ?= 4173
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 DATA ?=
 
-.PHONY: help demo test test-python test-web typecheck test-e2e models data vectors bench results deps chromium
+.PHONY: help demo test test-python test-web typecheck test-e2e models data vectors bench results deps chromium release
 
 help:
 	@echo "make demo    build the site and serve it on http://127.0.0.1:$(PORT)/ (needs Node only)"
 	@echo "make test    install everything a fresh machine needs, then run every test"
 	@echo "make models  retrain and re-export everything in public/ (DATA=PATH for your own data)"
 	@echo "make bench   browser and native timings into docs/PERFORMANCE.md"
+	@echo "make release build the site into release/motion-futures-VERSION.zip (licences and notices inside)"
 
 # --- installs -----------------------------------------------------------------------------
 $(VENV)/.installed: requirements.txt
@@ -69,10 +70,16 @@ vectors: $(VENV)/.installed
 
 models: data
 	$(PY) -m export models $(if $(DATA),--data $(DATA))
-	$(PY) -m export vectors
+	@# The shared test vectors are cut from the default data; a site built from your data skips them.
+	$(if $(DATA),,$(PY) -m export vectors)
 
 results: $(VENV)/.installed
 	$(PY) -m export results
 
 bench: deps
 	$(PY) -m export bench
+
+# --- release ---------------------------------------------------------------------------------
+# A versioned zip of the built site with LICENSE, THIRD_PARTY_NOTICES.md and DATA_NOTICE.md.
+release: node_modules/.installed
+	node scripts/release.mjs

@@ -1,6 +1,7 @@
 """Model configs (configs/*.json) and the model hash that detects stale committed models."""
 from __future__ import annotations
 
+import ast
 import copy
 import hashlib
 import json
@@ -9,9 +10,12 @@ from pathlib import Path
 from .paths import CONFIGS_DIR, ROOT
 
 EXPORT_DIR = ROOT / "export"
-# Evaluation does not change what a model computes, so editing it must not mark models stale.
-_NOT_HASHED = ("eval",)
-
+# What a model computes depends on its method's module, the shared training/export path, and what
+# those import inside export/. Hashing that import closure (not every file) keeps an edit to, say,
+# the evaluation or the BVH reader from marking every committed model stale.
+_PIPELINE = "export.pipeline"
+# The method registry maps names to classes; adding a method there changes no existing model.
+_NOT_HASHED = {"export.methods"}
 
 def load_config(path: str | Path) -> dict:
     path = Path(path)
@@ -34,13 +38,61 @@ def site_configs() -> list[dict]:
     return [load_config(CONFIGS_DIR / name) for name in site["models"]]
 
 
-def code_hash() -> str:
-    h = hashlib.sha256()
-    for path in sorted(EXPORT_DIR.rglob("*.py")):
-        rel = path.relative_to(EXPORT_DIR)
-        if rel.parts[0] in _NOT_HASHED:
+def _module_file(module: str) -> Path | None:
+    parts = module.split(".")[1:]
+    if not parts:
+        return EXPORT_DIR / "__init__.py"
+    rel = Path(*parts)
+    for cand in (EXPORT_DIR / rel.with_suffix(".py"), EXPORT_DIR / rel / "__init__.py"):
+        if cand.is_file():
+            return cand
+    return None
+
+
+def _imports(path: Path, module: str) -> set[str]:
+    """export.* modules imported by one file (absolute or relative, top level or inside functions)."""
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names if a.name.split(".")[0] == "export"}
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(base + ([node.module] if node.module else []))
+            else:
+                base = node.module or ""
+            if base.split(".")[0] != "export":
+                continue
+            found.add(base)
+            found |= {f"{base}.{a.name}" for a in node.names}   # `from . import x` may name a module
+    return found
+
+
+def code_files(method_module: str) -> list[Path]:
+    """The files of export/ that the method's training and export path imports, transitively."""
+    seen: dict[str, Path] = {}
+    todo = ["export", _PIPELINE, method_module]
+    while todo:
+        mod = todo.pop()
+        if mod in seen:
             continue
-        h.update(str(rel).encode() + b"\0" + path.read_bytes() + b"\0")
+        path = _module_file(mod)
+        if path is None:
+            continue
+        seen[mod] = path
+        if mod in _NOT_HASHED:
+            continue
+        parts = mod.split(".")
+        todo += [".".join(parts[:i]) for i in range(1, len(parts))]   # parent packages run too
+        todo += sorted(_imports(path, mod))
+    return sorted({p for m, p in seen.items() if m not in _NOT_HASHED})
+
+
+def code_hash(method_module: str) -> str:
+    h = hashlib.sha256()
+    for path in code_files(method_module):
+        h.update(str(path.relative_to(EXPORT_DIR)).encode() + b"\0" + path.read_bytes() + b"\0")
     return h.hexdigest()
 
 
@@ -48,7 +100,10 @@ def model_hash(cfg: dict, data_hash: str) -> str:
     h = hashlib.sha256()
     h.update(json.dumps(cfg, sort_keys=True).encode() + b"\0")
     h.update(data_hash.encode() + b"\0")
-    h.update(code_hash().encode())
+    from .methods import METHODS   # late: methods import this module's siblings
+    if cfg["method"] not in METHODS:
+        raise ValueError(f"unknown method {cfg['method']!r}; known: {sorted(METHODS)}")
+    h.update(code_hash(METHODS[cfg["method"]].split(":")[0]).encode())
     return "sha256:" + h.hexdigest()
 
 

@@ -63,3 +63,13 @@ def test_missing_model_file_is_named(tmp_path):
     p = load_predictor("regression-gru", tmp_path)
     with pytest.raises(FileNotFoundError, match="regression-gru.predict.onnx: model file missing"):
         p.predict(np.zeros((10, 18, 3)), Request())
+
+
+def test_model_hash_covers_the_method_import_closure_only():
+    from export.config import EXPORT_DIR, code_files
+    files = {str(p.relative_to(EXPORT_DIR)) for p in code_files("export.methods.baselines")}
+    assert {"methods/baselines.py", "models/regression_gru.py", "train/loop.py", "onnx/export.py",
+            "pipeline.py", "data/skeleton.py"} <= files
+    # Evaluation, other methods and the CLI do not change what the baselines compute.
+    assert not any(f.startswith("eval/") for f in files)
+    assert not {"methods/wat.py", "models/wat.py", "cli.py", "methods/__init__.py"} & files
