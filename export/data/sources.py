@@ -1,14 +1,19 @@
 """Motion sources: each turns some files into clips on the project skeleton at the project rate.
 
-One small base class and one subclass per source (DeepMimic now; BVH and npz folders plug in
-the same way), so `python -m export ... --data PATH` trains on any of them.
+One small base class and one subclass per source (DeepMimic, BVH folders, npz folders), so
+`python -m export ... --data PATH` trains on any of them.
 """
 from __future__ import annotations
 
+import json
+import re
 from pathlib import Path
 
 from . import deepmimic, split
+from .bvh import joint_positions, read_bvh
 from .clip import Clip, Split
+from .npz import load_npz
+from .retarget import JointMap, load_map, retarget
 from ..ops.loop import repeat_cycles
 
 FPS = 30.0
@@ -66,15 +71,138 @@ class DeepMimicSource(MotionSource):
         return clip
 
 
+class FolderSource(MotionSource):
+    """A user's folder of motion files, retargeted onto the project skeleton (data/retarget.py).
+
+    Labels: `labels.json` in the folder maps a file (its path relative to the folder, with or
+    without the suffix) to an action, or to {"action": ..., "test_only": true}; otherwise a
+    file's action is the name of the first sub-folder it sits in (`walk/take1.bvh` -> walk).
+    `joint-map.json` in the folder, if present, overrides the built-in joint map.
+    """
+
+    suffix = ""
+    default_map = ""
+    dataset = ""
+
+    def __init__(self, root: str | Path, joint_map: Path | dict | None = None):
+        self.root = Path(root)
+        if joint_map is None and (self.root / "joint-map.json").exists():
+            joint_map = self.root / "joint-map.json"
+        self.joint_map: JointMap = load_map(self.default_map, joint_map)
+
+    def files(self) -> list[Path]:
+        return sorted(p for p in self.root.rglob(f"*{self.suffix}") if p.is_file())
+
+    def _labels(self) -> dict[str, dict]:
+        path = self.root / "labels.json"
+        if not path.exists():
+            return {}
+        try:
+            doc = json.loads(path.read_text())
+        except (OSError, json.JSONDecodeError) as e:
+            raise ValueError(f"{path}: not readable JSON ({e})") from e
+        if not isinstance(doc, dict):
+            raise ValueError(f"{path}: must map file names to actions")
+        out = {}
+        for key, value in doc.items():
+            entry = {"action": value} if isinstance(value, str) else value
+            if not isinstance(entry, dict) or not isinstance(entry.get("action"), str) or not entry["action"] \
+                    or set(entry) - {"action", "test_only"}:
+                raise ValueError(f"{path}: field {key}: an action name or {{\"action\": ..., \"test_only\": true}}")
+            out[key.removesuffix(self.suffix)] = entry
+        return out
+
+    def _label(self, rel: Path, labels: dict[str, dict]) -> tuple[str, bool]:
+        key = rel.with_suffix("").as_posix()
+        entry = labels.get(key) or labels.get(rel.stem)
+        if entry:
+            return entry["action"], bool(entry.get("test_only", False))
+        if len(rel.parts) > 1:
+            return rel.parts[0], False
+        raise ValueError(f"{self.root / rel}: no action label: put it in a sub-folder named after its action "
+                         f"(walk/{rel.name}) or list it in {self.root / 'labels.json'}")
+
+    def _load(self) -> list[tuple[Clip, bool]]:
+        files = self.files()
+        if not files:
+            raise FileNotFoundError(f"{self.root}: no {self.suffix} files")
+        labels = self._labels()
+        out = []
+        for path in files:
+            rel = path.relative_to(self.root)
+            action, test_only = self._label(rel, labels)
+            positions = self._positions(path)
+            out.append((Clip(name=clip_name(rel), action=action, fps=FPS, positions=positions, loops=False,
+                             split=Split("train", [], []),
+                             source={"dataset": f"{self.dataset} ({self.root.name})", "file": rel.as_posix(),
+                                     "license": "as given by the user", "joint_map": self.joint_map.name}),
+                        test_only))
+        return out
+
+    def _positions(self, path: Path):
+        raise NotImplementedError
+
+
+class BvhFolderSource(FolderSource):
+    """*.bvh files (CMU-style skeletons by default)."""
+
+    name = "bvh"
+    suffix = ".bvh"
+    default_map = "cmu-bvh"
+    dataset = "BVH motion capture"
+
+    def _positions(self, path: Path):
+        bvh = read_bvh(path)
+        return retarget(joint_positions(bvh), bvh.names, bvh.frame_time, self.joint_map, str(path))
+
+
+class NpzFolderSource(FolderSource):
+    """*.npz files of joint positions (SMPL joint orders by default; see data/npz.py)."""
+
+    name = "npz"
+    suffix = ".npz"
+    default_map = "smpl"
+    dataset = "joint positions (npz)"
+
+    def _positions(self, path: Path):
+        motion = load_npz(path)
+        jmap = self.joint_map
+        names = motion.names or jmap.orders.get(str(motion.points.shape[1]))
+        if names is None:
+            raise ValueError(f"{path}: {motion.points.shape[1]} joints is not a joint order the {jmap.name} map knows "
+                             f"({', '.join(sorted(jmap.orders, key=int))}); add 'joint_names' to the npz or a "
+                             f"sidecar {path.with_suffix('.json').name} with \"names\"")
+        if motion.up and motion.up != jmap.up:
+            jmap = JointMap(jmap.name, motion.up, jmap.joints, jmap.orders)
+        return retarget(motion.points, names, 1.0 / motion.fps, jmap, str(path))
+
+
+def clip_name(rel: Path) -> str:
+    """A contract clip name from a relative path: `Walk/01 01.bvh` -> `walk_01_01`."""
+    slug = re.sub(r"[^a-z0-9_.-]+", "_", rel.with_suffix("").as_posix().lower().replace("/", "_"))
+    slug = slug.lstrip("_.-")
+    return slug or "clip"
+
+
 def default_source() -> MotionSource:
     return DeepMimicSource()
 
 
-def source_for(path: str | Path) -> MotionSource:
-    """The source for a user's folder; BVH and npz folders are added by the bring-your-own-data issue."""
+def source_for(path: str | Path, joint_map: Path | None = None) -> MotionSource:
+    """The source for a user's folder: DeepMimic humanoid3d_*.txt, *.bvh or *.npz files."""
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such folder")
-    if path.is_dir() and any(path.glob("humanoid3d_*.txt")):
+    if not path.is_dir():
+        raise ValueError(f"{path}: --data takes a folder (put the file in a sub-folder named after its action)")
+    if any(path.glob("humanoid3d_*.txt")):
         return DeepMimicSource(path)
-    raise ValueError(f"{path}: no motion files this version can read (DeepMimic humanoid3d_*.txt)")
+    has_bvh = any(p.is_file() for p in path.rglob("*.bvh"))
+    has_npz = any(p.is_file() for p in path.rglob("*.npz"))
+    if has_bvh and has_npz:
+        raise ValueError(f"{path}: holds both .bvh and .npz files; give one kind per folder")
+    if has_bvh:
+        return BvhFolderSource(path, joint_map)
+    if has_npz:
+        return NpzFolderSource(path, joint_map)
+    raise ValueError(f"{path}: no motion files this version can read (DeepMimic humanoid3d_*.txt, *.bvh, *.npz)")

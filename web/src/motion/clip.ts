@@ -17,6 +17,8 @@ export interface Motion {
   train: Range[];
   test: Range[];
   license?: string;
+  /** Set for motion that came from a user's file rather than the site's data (see motion/bvh.ts). */
+  origin?: { kind: 'dropped-file'; file: string };
 }
 
 export function motionFromDoc(doc: ClipDoc): Motion {

@@ -1,0 +1,249 @@
+"""Retargeting any joint positions onto the project skeleton: one method, used for BVH and npz alike.
+
+The TypeScript twin is web/src/motion/retarget.ts; contract/vectors/retarget.json ties them.
+
+1. A joint map (contract/joint-maps/*.json, overridable by a user's small JSON) names, for each
+   of the 18 project joints, the source point it follows: a source joint, an End Site
+   ("Head/end"), or the mean of several ("LeftUpLeg+RightUpLeg"). The first alternative whose
+   names all exist in the file wins; `null` means "derive it" (head and toes only, see 5).
+2. Up axis: a z-up source is turned to y-up by (x, y, z) -> (x, z, -y) (a right-handed turn).
+3. Frame rate: the source points are resampled to 30 Hz by linear interpolation in time
+   (t_k = k / 30). Interpolating points shortens bones between frames slightly, which step 4
+   undoes, because only directions survive it.
+4. Walk the project skeleton from the root: each joint = its parent + the project bone length
+   (|SKELETON.offsets|) x the unit direction from the parent's source point to the joint's. So
+   each bone keeps its direction from the source and takes the project's length; proportions of
+   the source body are discarded. The root keeps only its height (horizontal translation is
+   removed, as for the DeepMimic clips), scaled by project leg length / source leg length
+   (hip-knee-ankle, mean over both legs and all frames), so feet that touch the ground in the
+   source still touch it. That ratio also makes units irrelevant: cm, m, inches or CMU's
+   1/0.45-inch units give the same result, with nothing to declare.
+5. Derived end points, when the source lacks them: the head continues the upper spine
+   (neck + head length x unit(neck - chest)); a toe is the ankle plus the project's rest toe
+   offset turned to the pelvis heading (forward = up x (right_hip - left_hip), foot flat).
+6. Ground: the whole clip is shifted vertically so that its lowest point is at y = 0.
+
+Facing is left as it comes: windows are canonicalised later (ops/facing.py).
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..paths import CONTRACT_DIR
+from .skeleton import SKELETON
+
+FPS = 30.0
+# Fewer frames (1/3 s at 30 Hz) cannot be a history for any served model.
+MIN_FRAMES = 10
+MAX_FRAMES = 108_000  # one hour at 30 Hz
+JOINT_MAPS_DIR = CONTRACT_DIR / "joint-maps"
+DERIVABLE = ("head", "right_toe", "left_toe")
+LEGS = (("right_hip", "right_knee", "right_ankle"), ("left_hip", "left_knee", "left_ankle"))
+
+
+class RetargetError(ValueError):
+    """The source cannot be put on the project skeleton; the message names the file and why."""
+
+
+class UnknownSkeletonError(RetargetError):
+    pass
+
+
+@dataclass
+class JointMap:
+    name: str
+    up: str                                   # "y" or "z"
+    joints: dict[str, list[str | None]]       # project joint -> alternatives
+    orders: dict[str, list[str]] = field(default_factory=dict)  # joint count -> source names (npz)
+
+
+KEYS = ("format", "version", "name", "about", "extends", "up", "joints", "orders")
+
+
+def _check(doc: dict, where: str) -> None:
+    unknown = sorted(set(doc) - set(KEYS))
+    if unknown:
+        raise RetargetError(f"{where}: unknown field {unknown[0]!r} (a joint map has {', '.join(KEYS)})")
+    for key in ("joints", "orders"):
+        if not isinstance(doc.get(key, {}), dict):
+            raise RetargetError(f"{where}: field {key}: must be a JSON object")
+    if doc.get("up", "y") not in ("y", "z"):
+        raise RetargetError(f"{where}: field up: must be \"y\" or \"z\", got {doc.get('up')!r}")
+    for joint, alts in doc.get("joints", {}).items():
+        if joint not in SKELETON.names:
+            raise RetargetError(f"{where}: field joints/{joint}: not a project joint ({', '.join(SKELETON.names)})")
+        if not isinstance(alts, list) or not alts or not all(a is None or (isinstance(a, str) and a) for a in alts):
+            raise RetargetError(f"{where}: field joints/{joint}: must be a non-empty list of source names or null")
+        if None in alts and joint not in DERIVABLE:
+            raise RetargetError(f"{where}: field joints/{joint}: only {', '.join(DERIVABLE)} can be derived (null)")
+    for count, names in doc.get("orders", {}).items():
+        if not count.isdigit() or not isinstance(names, list) or len(names) != int(count):
+            raise RetargetError(f"{where}: field orders/{count}: must list exactly {count} joint names")
+
+
+def builtin_map(name: str) -> dict:
+    path = JOINT_MAPS_DIR / f"{name}.json"
+    if not path.exists():
+        known = sorted(p.stem for p in JOINT_MAPS_DIR.glob("*.json"))
+        raise RetargetError(f"no joint map named {name!r} (built in: {', '.join(known)})")
+    return json.loads(path.read_text())
+
+
+def merge_maps(base: dict, override: dict | None, where: str = "joint map") -> JointMap:
+    """The base map with a user's override on top: `joints` merge per project joint, `up` and
+    `orders` entries replace; `extends` in the override names another built-in base."""
+    if override and override.get("extends"):
+        if not isinstance(override["extends"], str):
+            raise RetargetError(f"{where}: field extends: the name of a built-in joint map")
+        base = builtin_map(override["extends"])
+    _check(base, base.get("name", "joint map"))
+    doc = {"name": base.get("name", "custom"), "up": base.get("up", "y"),
+           "joints": dict(base.get("joints", {})), "orders": dict(base.get("orders", {}))}
+    if override:
+        _check(override, where)
+        doc["up"] = override.get("up", doc["up"])
+        doc["joints"].update(override.get("joints", {}))
+        doc["orders"].update(override.get("orders", {}))
+        doc["name"] = f"{doc['name']} + {where}"
+    missing = [j for j in SKELETON.names if j not in doc["joints"]]
+    if missing:
+        raise RetargetError(f"{where}: no entry for project joints {', '.join(missing)}")
+    return JointMap(doc["name"], doc["up"], doc["joints"], doc["orders"])
+
+
+def load_map(default: str, override: Path | dict | None = None) -> JointMap:
+    """A built-in map (`cmu-bvh`, `smpl`), optionally overridden by a user's JSON file or dict."""
+    where = "joint map"
+    if isinstance(override, (str, Path)):
+        where = str(override)
+        try:
+            override = json.loads(Path(override).read_text())
+        except (OSError, json.JSONDecodeError) as e:
+            raise RetargetError(f"{where}: not a readable joint map JSON ({e})") from e
+        if not isinstance(override, dict):
+            raise RetargetError(f"{where}: a joint map is a JSON object")
+    return merge_maps(builtin_map(default), override, where)
+
+
+def _key(name: str) -> str:
+    # "mixamorig:LeftArm" and "leftarm" both match "LeftArm".
+    return name.rsplit(":", 1)[-1].lower()
+
+
+def resolve(jmap: JointMap, names: list[str], where: str) -> list[list[int] | None]:
+    """Per project joint: the source indices whose mean it follows, or None (derived)."""
+    exact = {n: i for i, n in enumerate(names)}
+    loose: dict[str, int] = {}
+    for i, n in enumerate(names):
+        loose.setdefault(_key(n), i)
+
+    def find(name: str) -> int | None:
+        return exact.get(name, loose.get(_key(name)))
+
+    out: list[list[int] | None] = []
+    missing = []
+    for joint in SKELETON.names:
+        choice: list[int] | None = None
+        found = False
+        for alt in jmap.joints[joint]:
+            if alt is None:
+                found = True
+                break
+            idx = [find(part) for part in alt.split("+")]
+            if None not in idx:
+                choice, found = idx, True
+                break
+        if not found:
+            missing.append(f"{joint} (tried {', '.join(a for a in jmap.joints[joint] if a)})")
+        out.append(choice)
+    if missing:
+        shown = ", ".join(n for n in names if "/end" not in n)
+        shown = shown if len(shown) < 400 else shown[:400] + "…"
+        raise UnknownSkeletonError(
+            f"{where}: unknown skeleton for joint map {jmap.name}: no source joint for {'; '.join(missing)}. "
+            f"The file's joints are: {shown}. Give a joint map (docs/BRING_YOUR_OWN.md)")
+    return out
+
+
+def to_y_up(points: np.ndarray, up: str) -> np.ndarray:
+    if up == "y":
+        return points
+    return np.stack([points[..., 0], points[..., 2], -points[..., 1]], axis=-1)
+
+
+def resample_points(points: np.ndarray, frame_time: float, out_fps: float = FPS) -> np.ndarray:
+    """Linear interpolation in time from frames `frame_time` apart to `out_fps`, over the source's duration."""
+    frames = len(points)
+    if frames == 1:
+        return points[:1].copy()
+    n = int(np.floor((frames - 1) * frame_time * out_fps + 1e-9)) + 1
+    # u = (k / out_fps) / frame_time, written the same way in TypeScript so both pick the same frames.
+    u = (np.arange(n) / out_fps) / frame_time
+    idx = np.minimum(np.floor(u), frames - 2).astype(int)
+    w = (u - idx)[:, None, None]
+    return points[idx] * (1 - w) + points[idx + 1] * w
+
+
+def retarget(points: np.ndarray, names: list[str], frame_time: float, jmap: JointMap, where: str,
+             min_frames: int = MIN_FRAMES) -> np.ndarray:
+    """Source points [F, N, 3] named `names`, `frame_time` seconds apart -> project positions
+    [F', 18, 3] at 30 Hz."""
+    points = np.asarray(points, dtype=np.float64)
+    if points.ndim != 3 or points.shape[2] != 3 or points.shape[1] != len(names):
+        raise RetargetError(f"{where}: expected points [frames, {len(names)}, 3], got {points.shape}")
+    if not np.all(np.isfinite(points)):
+        raise RetargetError(f"{where}: contains NaN or infinite positions")
+    if not (np.isfinite(frame_time) and frame_time > 0):
+        raise RetargetError(f"{where}: the frame time must be positive, got {frame_time}")
+    sources = resolve(jmap, names, where)
+    if len(points) == 0:
+        raise RetargetError(f"{where}: too few frames: the file has none")
+    if (len(points) - 1) * frame_time * FPS >= MAX_FRAMES:
+        raise RetargetError(f"{where}: {len(points)} frames {frame_time:g} s apart last longer than an hour; "
+                            "check the frame time or cut the take shorter")
+    pts = resample_points(to_y_up(points, jmap.up), frame_time)
+    if len(pts) < min_frames:
+        raise RetargetError(f"{where}: too few frames: {len(points)} at {1 / frame_time:.4g} Hz is {len(pts)} at 30 Hz, "
+                            f"and a history needs at least {min_frames}")
+    q = {j: pts[:, idx].mean(axis=1) for j, idx in zip(SKELETON.names, sources) if idx is not None}
+
+    source_leg = np.mean([np.linalg.norm(q[a] - q[b], axis=-1) + np.linalg.norm(q[b] - q[c], axis=-1)
+                          for a, b, c in LEGS])
+    lengths = np.linalg.norm(SKELETON.offsets, axis=-1)
+    project_leg = lengths[SKELETON.index("right_knee")] + lengths[SKELETON.index("right_ankle")]
+    if not source_leg > 1e-9:
+        raise RetargetError(f"{where}: the source legs have zero length; check the joint map")
+
+    out = np.zeros((len(pts), SKELETON.num_joints, 3))
+    out[:, 0, 1] = q["root"][:, 1] * (project_leg / source_leg)
+    for j, (name, parent) in enumerate(zip(SKELETON.names, SKELETON.parents)):
+        if parent < 0:
+            continue
+        if name in q:
+            d = q[name] - q[SKELETON.names[parent]]
+            norm = np.linalg.norm(d, axis=-1, keepdims=True)
+            bad = np.flatnonzero(norm[:, 0] < 1e-6 * source_leg)
+            if len(bad):
+                raise RetargetError(f"{where}: the source points for {SKELETON.names[parent]} and {name} coincide "
+                                    f"(frame {bad[0]} at 30 Hz); map them to different joints")
+            out[:, j] = out[:, parent] + lengths[j] * d / norm
+        elif name == "head":
+            out[:, j] = out[:, parent] + lengths[j] * _unit(out[:, parent] - out[:, SKELETON.index("chest")])
+        else:  # a toe: the rest offset turned to the pelvis heading
+            across = out[:, SKELETON.index("right_hip")] - out[:, SKELETON.index("left_hip")]
+            fwd = np.stack([across[:, 2], np.zeros(len(across)), -across[:, 0]], axis=-1)
+            flat = np.linalg.norm(fwd, axis=-1) < 1e-9
+            fwd[flat] = (1.0, 0.0, 0.0)  # hips vertical (lying on the side): no heading; keep +x
+            rest = SKELETON.offsets[j]
+            out[:, j] = out[:, parent] + rest[0] * _unit(fwd) + rest[1] * np.array([0.0, 1.0, 0.0])
+    out[..., 1] -= out[..., 1].min()
+    return out
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.maximum(n, 1e-12)

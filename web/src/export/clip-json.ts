@@ -1,0 +1,37 @@
+// Export what is shown as clip documents of the contract (contract/clip.schema.json): one clip per
+// future, each the history followed by that future, so it plays as one continuous motion.
+// One future -> one clip document; several -> a JSON array of clip documents.
+import type { ClipDoc } from '../contract/types';
+import { validate } from '../contract/validate';
+import { checkShown, figureName, float32Text, type Shown } from './shown';
+
+export function clipDocuments(s: Shown): ClipDoc[] {
+  checkShown(s);
+  const J = s.joints;
+  const frame = (arr: Float32Array, f: number) =>
+    Array.from({ length: J }, (_, j) => [0, 1, 2].map((c) => Number(float32Text(arr[(f * J + j) * 3 + c])))) as number[][];
+  return s.futures.map((fut) => {
+    const frames = s.history.frames + fut.frames;
+    const positions: number[][][] = [];
+    for (let f = 0; f < s.history.frames; f++) positions.push(frame(s.history.positions, f));
+    for (let f = 0; f < fut.frames; f++) positions.push(frame(fut.positions, f));
+    const doc: ClipDoc = {
+      format: 'motion-futures/clip', version: 1, name: `${s.name}.${figureName(fut.sample)}`, action: 'prediction', fps: s.fps,
+      loops: false, skeleton: { joints: s.skeleton.joints, parents: s.skeleton.parents },
+      split: { role: 'test', train: [], test: [[s.history.frames, frames]] },
+      source: {
+        dataset: 'motion-futures prediction', file: s.name, ...(s.model ? { model: s.model } : {}), sample: fut.sample + 1,
+        start: s.start, history_frames: s.history.frames,
+      } as ClipDoc['source'],
+      positions,
+    };
+    return validate(doc, 'clip', doc.name);
+  });
+}
+
+/** The JSON text of the export; numbers are shortest float32 decimals like the committed clips. */
+export function clipJson(s: Shown): string {
+  const docs = clipDocuments(s);
+  const text = docs.map((d) => JSON.stringify(d));
+  return (docs.length === 1 ? text[0] : `[\n${text.join(',\n')}\n]`) + '\n';
+}
