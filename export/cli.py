@@ -89,6 +89,43 @@ def _vectors(args) -> None:
     print("wrote vectors:", ", ".join(write_all()))
 
 
+def _evaluate(args) -> None:
+    from .data.sources import default_source
+    from .eval.harness import evaluate, load_eval_config
+    from .eval.report import write_json, write_markdown
+    from .paths import MODELS_DIR
+    doc = evaluate(default_source().clips(), load_eval_config(args.config),
+                   models_dir=Path(args.models_dir) if args.models_dir else MODELS_DIR)
+    write_json(doc)
+    write_markdown(doc)
+    print(f"wrote public/results.json and docs/RESULTS.md in {doc['seconds']:.0f} s")
+
+
+def _results(args) -> None:
+    from .data.sources import default_source
+    from .eval.harness import load_eval_config
+    from .eval.seeds import train_seeds
+    cfg = load_eval_config(args.config)
+    for note in train_seeds(default_source().clips(), list(cfg["training_seeds"])):
+        print(note)
+    _evaluate(args)
+
+
+def _bench(args) -> None:
+    from .bench import bench, native_only
+    from .bench.report import table
+    from .paths import MODELS_DIR
+    models_dir = Path(args.models_dir) if args.models_dir else MODELS_DIR
+    if args.native_only:
+        doc = native_only(models_dir, runs=args.runs, warmup=args.warmup)
+        print(json.dumps(doc))
+        return
+    doc = bench(models_dir, runs=args.runs, warmup=args.warmup)
+    rows = [[t["target"], t["limit"], {True: "met", False: "MISSED", None: "not measured"}[t["met"]]] for t in doc["targets"]]
+    print(table(["target", "limit", "result"], rows))
+    print(f"wrote {doc['json_path']} and docs/PERFORMANCE.md in {doc['seconds']:.0f} s")
+
+
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python -m export", description="motion-futures: data, training, export")
     sub = p.add_subparsers(dest="command", required=True)
@@ -127,6 +164,20 @@ def parser() -> argparse.ArgumentParser:
 
     c = sub.add_parser("vectors", help="write the shared Python -> TypeScript test vectors")
     c.set_defaults(run=_vectors)
+
+    c = sub.add_parser("bench", help="browser and native timings: bench/results.json and docs/PERFORMANCE.md")
+    c.add_argument("--runs", type=int, default=20, help="timed predictions per case, after the warm-up")
+    c.add_argument("--warmup", type=int, default=5)
+    c.add_argument("--models-dir", help="default: public/models")
+    c.add_argument("--native-only", action="store_true", help="only the native timings, as JSON to stdout")
+    c.set_defaults(run=_bench)
+
+    for name, run, text in (("evaluate", _evaluate, "evaluate every results row: public/results.json, docs/RESULTS.md"),
+                            ("results", _results, "train the extra seeds and ablations into runs/seeds, then evaluate")):
+        c = sub.add_parser(name, help=text)
+        c.add_argument("--config", help="evaluation config (default: configs/eval.json)")
+        c.add_argument("--models-dir", help="served models (default: public/models)")
+        c.set_defaults(run=run)
     return p
 
 

@@ -1,0 +1,152 @@
+"""Every metric of export/eval on a case small enough to compute by hand."""
+import math
+
+import numpy as np
+import pytest
+
+from export.eval import metrics as M
+from export.eval.fid import FeatureSpace, frechet
+from export.eval.stats import FAILS, HOLDS, INCONCLUSIVE, MISSING, combine, compare, summarise
+from export.ops.dct_smoothness import smoothness
+
+
+def motion(xs, joints=1, y=0.0):
+    """[T, joints, 3] with every joint at (x_t, y, 0)."""
+    out = np.zeros((len(xs), joints, 3))
+    out[:, :, 0] = np.asarray(xs, dtype=float)[:, None]
+    out[:, :, 1] = y
+    return out
+
+
+def test_diversity_is_the_mean_pairwise_mean_pose_distance():
+    a = np.zeros((2, 1, 3))
+    b = np.zeros((2, 1, 3))
+    b[0, 0] = [3, 4, 0]                      # frame distances 5 and 0
+    assert M.diversity(np.stack([a, b])) == pytest.approx(2.5)
+    c3 = [np.full((2, 1, 3), 0.0), np.tile([[[3.0, 4.0, 0.0]]], (2, 1, 1)), np.tile([[[6.0, 8.0, 0.0]]], (2, 1, 1))]
+    assert M.diversity(np.stack(c3)) == pytest.approx((5 + 10 + 5) / 3)
+    assert M.diversity(a[None]) == 0.0       # one sample has no pairs
+
+
+def test_pose_distance_is_over_the_whole_pose_not_per_joint():
+    a, b = motion([0.0], joints=2), motion([1.0], joints=2)
+    assert M.diversity(np.stack([a, b])) == pytest.approx(math.sqrt(2))   # WAT Eq. 10: ||y_i - y_j||_2
+    assert M.mpjpe_curves(b[None], a)[0, 0] == pytest.approx(1.0)        # Keyposes MPJPE: mean per joint
+
+
+def test_diversity_after_dtw_aligns_time_shifts_away():
+    a = motion([0, 1, 2])
+    b = motion([0, 0, 1, 2])                  # the same motion, one frame late
+    assert M.diversity_dtw([a, b]) == pytest.approx(0.0)
+    assert M.diversity_dtw([a, motion([0, 0, 1, 2], y=1.0)]) == pytest.approx(1.0)
+    aa, bb = M.dtw_align(a, b)
+    assert len(aa) == len(bb) == 4
+
+
+def test_ade_is_best_of_k_over_the_truth_length():
+    truth = np.zeros((2, 1, 3))
+    s1 = motion([1, 1, 9])                    # the third frame is past the truth and ignored
+    s2 = motion([0, 3, 0])
+    assert M.ade(np.stack([s1, s2]), truth) == pytest.approx(1.0)
+    assert M.ade(np.stack([s2]), truth) == pytest.approx(1.5)
+
+
+def test_ade_after_dtw():
+    truth = motion([0, 1, 2])
+    assert M.ade_dtw([motion([0, 0, 1, 2]), motion([5, 5, 5])], truth) == pytest.approx(0.0)
+    assert M.ade_dtw([motion([0, 1, 2], y=0.5)], truth) == pytest.approx(0.5)
+
+
+def test_mpjpe_ave_and_best():
+    truth = np.zeros((3, 2, 3))
+    s1 = motion([0.1, 0.1, 0.5], joints=2)    # mean 0.233
+    s2 = motion([0.3, 0.3, 0.2], joints=2)    # mean 0.267
+    ave, best = M.mpjpe_at(np.stack([s1, s2]), truth, 2)
+    assert ave == pytest.approx(0.5)          # the sample with the lowest average error, at frame 2
+    assert best == pytest.approx(0.2)         # the lowest error at frame 2
+    with pytest.raises(ValueError, match="outside"):
+        M.mpjpe_at(np.stack([s1]), truth, 3)
+
+
+def test_pskl_by_hand():
+    truth = motion([1, 0, 0, 0])[None]        # impulse: flat power spectrum [1/4] * 4
+    pred = motion([2, 1, 0, 0])[None]         # |FFT|^2 = [9, 5, 1, 5] -> [.45, .25, .05, .25]
+    gt_pred, pred_gt = M.pskl(truth, pred)
+    assert gt_pred == pytest.approx(0.25 * math.log(25 / 9), rel=1e-6)
+    assert pred_gt == pytest.approx(0.45 * math.log(1.8) + 0.05 * math.log(0.2), rel=1e-6)
+    assert M.pskl(truth, 2 * truth) == pytest.approx((0.0, 0.0), abs=1e-9)   # scale does not matter
+    with pytest.raises(ValueError, match="one length"):
+        M.pskl(truth, motion([1, 0, 0])[None])
+
+
+def test_joint_speed():
+    m = motion([0.0, 0.1, 0.3])
+    assert M.joint_speed(m, 30.0) == pytest.approx(4.5)
+    assert M.joint_speed(m, 30.0, last_frames=1) == pytest.approx(6.0)
+    with pytest.raises(ValueError, match="two frames"):
+        M.joint_speed(m[:1], 30.0)
+
+
+def test_transition_smoothness_calls_eq4():
+    still = np.ones((10, 2, 3))
+    assert M.transition_smoothness(still, still) == pytest.approx(0.0, abs=1e-20)   # a constant is DCT basis 0
+    cut = np.zeros((10, 2, 3))
+    assert M.transition_smoothness(np.ones((12, 2, 3)), cut) == pytest.approx(smoothness(still, cut))
+    assert M.transition_smoothness(still, cut) > 0.1
+    with pytest.raises(ValueError, match="10 frames on each side"):
+        M.transition_smoothness(still[:5], cut)
+
+
+def test_length_histogram_and_accuracy():
+    assert M.length_histogram([5, 10, 15, 30], [0, 10, 20, 30]) == [1, 2, 1]
+    assert M.accuracy(np.array([1, 2, 3]), np.array([1, 0, 3])) == pytest.approx(2 / 3)
+    with pytest.raises(ValueError, match="equal non-empty"):
+        M.accuracy(np.array([1]), np.array([1, 2]))
+    # nine of class 0 all right, one of class 1 wrong: plain 0.9, mean per class 0.5
+    labels = np.array([0] * 9 + [1])
+    assert M.accuracy(np.zeros(10, dtype=int), labels) == pytest.approx(0.9)
+    assert M.balanced_accuracy(np.zeros(10, dtype=int), labels) == pytest.approx(0.5)
+
+
+def test_noise_diversity_closed_form_and_monte_carlo():
+    sigma = 0.5
+    assert M.noise_diversity(sigma, 1) == pytest.approx(2 * sigma / math.sqrt(math.pi))   # E|X - Y|
+    assert M.noise_diversity(sigma, 2) == pytest.approx(sigma * math.sqrt(math.pi))       # Rayleigh mean
+    rng = np.random.default_rng(0)
+    samples = rng.normal(0, 0.02, (10, 400, 18, 3))
+    assert M.diversity(samples) == pytest.approx(M.noise_diversity(0.02, 54), rel=0.01)
+
+
+def test_frechet_by_hand():
+    a = np.array([[1, 2], [1, -2], [-1, 2], [-1, -2]], dtype=float)   # mean 0, cov diag(4/3, 16/3)
+    b = 2 * a + [3, 0]                                                 # mean (3, 0), cov diag(16/3, 64/3)
+    assert frechet(a, b) == pytest.approx(9 + 4 / 3 + 16 / 3)
+    assert frechet(a, a) == pytest.approx(0.0, abs=1e-9)
+    with pytest.raises(ValueError, match="two feature rows"):
+        frechet(a[:1], b)
+
+
+def test_feature_space_keeps_at_most_8_dims_and_bootstraps():
+    rng = np.random.default_rng(1)
+    ref = rng.normal(size=(200, 20))
+    space = FeatureSpace(ref, dims=12)
+    assert space.project(ref).shape == (200, 8)
+    value, lo, hi = space.fid_interval(ref + 0.5, ref, rounds=50, seed=0)
+    assert lo <= value <= hi and value > 0.5
+
+
+def test_summary_and_the_two_sigma_rule():
+    s = summarise([1.0, 2.0, 3.0])
+    assert s == {"mean": 2.0, "std": 1.0, "n": 3}
+    assert summarise([float("nan")]) is None
+    a, b = {"mean": 2.0, "std": 0.1, "n": 9}, {"mean": 1.0, "std": 0.1, "n": 9}
+    assert compare(a, b, "greater")[0] == HOLDS
+    assert compare(a, b, "less")[0] == FAILS
+    assert compare(a, {"mean": 1.8, "std": 0.1, "n": 9}, "greater")[0] == INCONCLUSIVE   # 0.2 < 2 * 0.141
+    assert compare({"mean": 1.0, "std": 0.1, "n": 9}, b, "not_less")[0] == HOLDS
+    assert compare({"mean": 0.5, "std": 0.1, "n": 9}, b, "not_less")[0] == FAILS
+    assert compare(None, b, "greater")[0] == MISSING
+    assert combine([HOLDS, INCONCLUSIVE]) == INCONCLUSIVE and combine([HOLDS, FAILS]) == FAILS
+    assert combine([HOLDS, HOLDS]) == HOLDS and combine([HOLDS, MISSING]) == MISSING
+    with pytest.raises(ValueError, match="direction"):
+        compare(a, b, "bigger")

@@ -1,0 +1,80 @@
+// The Results page's pure parts: number formatting, plot geometry, and the results.json check
+// (run on the committed public/results.json too).
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { describe, expect, it } from 'vitest';
+import { parseResults, ResultsError } from '../../web/src/results/data';
+import { cell, extent, fmt, histogramBars, linearScale, niceTicks } from '../../web/src/results/format';
+
+const RESULTS = fileURLToPath(new URL('../../public/results.json', import.meta.url));
+
+describe('formatting', () => {
+  it('gives each size its digits', () => {
+    expect(fmt(1234.5)).toBe('1235');
+    expect(fmt(12.345)).toBe('12.3');
+    expect(fmt(0.12345)).toBe('0.123');
+    expect(fmt(0.00012345)).toBe('1.2e-4');
+    expect(fmt(0)).toBe('0');
+    expect(fmt(66.666, '%')).toBe('66.7');
+    expect(fmt(null)).toBe('—');
+    expect(fmt(Number.NaN)).toBe('—');
+  });
+
+  it('writes mean ± std, or the mean alone for one run', () => {
+    expect(cell({ mean: 0.5, std: 0.02, n: 9 })).toBe('0.500 ± 0.020');
+    expect(cell({ mean: 0.5, std: 0, n: 1 })).toBe('0.500');
+    expect(cell(undefined)).toBe('—');
+  });
+});
+
+describe('plot geometry', () => {
+  it('picks round ticks covering the range', () => {
+    expect(niceTicks(0, 1, 5)).toEqual([0, 0.2, 0.4, 0.6, 0.8, 1]);
+    expect(niceTicks(3, 97, 5)).toEqual([0, 20, 40, 60, 80, 100]);
+    expect(niceTicks(2, 2)).toEqual([2, 2.2, 2.4, 2.6, 2.8, 3]);
+  });
+
+  it('maps the tick range onto pixels, flipped for y', () => {
+    const y = linearScale(0, 1, 300, 20);
+    expect(y(0)).toBe(300);
+    expect(y(1)).toBe(20);
+    expect(y(0.5)).toBe(160);
+    expect(y.ticks[0]).toBe(0);
+  });
+
+  it('pads the extent of mean ± std', () => {
+    const [lo, hi] = extent([{ mean: 1, std: 0.5, n: 2 }, { mean: 3, std: 0, n: 1 }], 0.1);
+    expect(lo).toBeCloseTo(0.25);
+    expect(hi).toBeCloseTo(3.25);
+  });
+
+  it('draws histogram bars scaled to the tallest', () => {
+    const bars = histogramBars([1, 4, 0], [0, 10, 20, 30], 30, 40);
+    expect(bars.map((b) => b.height)).toEqual([10, 40, 0]);
+    expect(bars.map((b) => b.x)).toEqual([0, 10, 20]);
+    expect(bars[1]).toMatchObject({ count: 4, from: 10, to: 20 });
+    expect(() => histogramBars([1, 2], [0, 10], 30, 40)).toThrow(/2 counts need 3 edges/);
+  });
+});
+
+describe('results.json', () => {
+  it('rejects a wrong document with a message naming the problem', () => {
+    expect(() => parseResults(null)).toThrow(ResultsError);
+    expect(() => parseResults({ format: 'other' })).toThrow(/format must be "motion-futures\/results"/);
+    expect(() => parseResults({ format: 'motion-futures/results', version: 1, tables: 3 })).toThrow(/field tables must be a list/);
+    const bad = { format: 'motion-futures/results', version: 1, tables: [{ id: 't', rows: [], columns: ['nope'] }],
+      claims: [], sanity: [], skipped: [], classifiers: {}, columns: {} };
+    expect(() => parseResults(bad)).toThrow(/table t has unknown column nope/);
+  });
+
+  it('accepts the committed results, with every table stating horizon, history and K', () => {
+    const doc = parseResults(JSON.parse(readFileSync(RESULTS, 'utf8')));
+    expect(doc.tables.length).toBeGreaterThan(0);
+    for (const t of doc.tables) {
+      expect(t.horizon_frames).toBeGreaterThan(0);
+      if (t.truth) expect(t.history_frames).toBeGreaterThan(0);   // others may use each model's own
+      expect(t.k).toBeGreaterThan(0);
+    }
+    expect(doc.claims.every((c) => ['holds', 'fails', 'inconclusive', 'not evaluated'].includes(c.status))).toBe(true);
+  });
+});

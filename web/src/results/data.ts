@@ -1,0 +1,105 @@
+// The shape of public/results.json (written by export/eval/report.py) and a check that names
+// what is missing, so a stale or broken file gives a readable message on the page.
+
+export interface Stat { mean: number; std: number; n: number }
+
+export interface Row {
+  id: string;
+  label: string;
+  kind: 'model' | 'oracle' | 'noise';
+  group: string;
+  note: string;
+  notes: string[];
+  skipped?: string;
+  runs?: number;
+  k?: number;
+  values?: Record<string, Stat>;
+  intervals?: Record<string, [number, number]>;
+  lengths?: Record<string, number[]>;
+  hashes?: Record<string, string>;
+}
+
+export interface Table {
+  id: string;
+  title: string;
+  about: string;
+  source: string;
+  history_frames: number | null;   // null: each model's own (stated in the row's notes)
+  horizon_frames: number;
+  truth: boolean;
+  k: number;
+  windows: number | null;
+  clips: string[];
+  actions: string[];
+  columns: string[];
+  length_edges: number[];
+  rows: Row[];
+  notes: string[];
+}
+
+export interface ClaimPart {
+  table: string; a: string; b: string; metric: string; metric_b: string; direction: string; status: string;
+  a_value: Stat | null; b_value: Stat | null; difference: number | null; bar: number | null; missing: string[];
+}
+
+export interface Claim { id: string; paper: string; text: string; status: string; parts: ClaimPart[] }
+
+export interface Sanity { id: string; table: string | null; text: string; expected: number | null; measured: number; passed: boolean }
+
+export interface ClassifierReport {
+  train_accuracy: number;
+  test_accuracy: number;
+  test_balanced_accuracy: number;
+  motionless_class?: string | null;
+  test_groups: Record<string, { accuracy: number; snippets: number; predicted?: Record<string, number> }>;
+  classes: number;
+  chance: number;
+  train_snippets: number;
+  test_snippets: number;
+}
+
+export interface Column { label: string; unit: string; better: 'lower' | 'higher' | '' }
+
+export interface Results {
+  format: 'motion-futures/results';
+  columns: Record<string, Column>;
+  version: number;
+  k: number;
+  fps: number;
+  training_seeds: number[];
+  sampling_seeds: number[];
+  models: Record<string, string>;
+  classifiers: Record<string, ClassifierReport>;
+  classifier_config: { snippet_frames: number };
+  sanity: Sanity[];
+  claims: Claim[];
+  tables: Table[];
+  skipped: { row: string; label: string; reason: string }[];
+  context_plot: string[];
+  length_plot: string | null;
+  seconds: number;
+}
+
+export class ResultsError extends Error {}
+
+function need(ok: boolean, what: string): void {
+  if (!ok) throw new ResultsError(`results.json: ${what}`);
+}
+
+/** Check the fields the page reads; throws ResultsError naming the first problem. */
+export function parseResults(doc: unknown): Results {
+  need(typeof doc === 'object' && doc !== null, 'not a JSON object');
+  const r = doc as Partial<Results>;
+  need(r.format === 'motion-futures/results', `format must be "motion-futures/results", got ${JSON.stringify(r.format)}`);
+  need(r.version === 1, `unsupported version ${JSON.stringify(r.version)}`);
+  for (const key of ['tables', 'claims', 'sanity', 'skipped'] as const) need(Array.isArray(r[key]), `field ${key} must be a list`);
+  need(typeof r.classifiers === 'object' && r.classifiers !== null, 'field classifiers is missing');
+  need(typeof r.columns === 'object' && r.columns !== null, 'field columns is missing');
+  r.tables!.forEach((t, i) => {
+    need(typeof t.id === 'string' && Array.isArray(t.rows) && Array.isArray(t.columns), `table ${i} lacks id, rows or columns`);
+    for (const c of t.columns) need(c in r.columns!, `table ${t.id} has unknown column ${c}`);
+    t.rows.forEach((row, j) => need(typeof row.id === 'string' && typeof row.label === 'string',
+      `table ${t.id} row ${j} lacks id or label`));
+  });
+  return r as Results;
+}
