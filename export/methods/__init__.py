@@ -9,6 +9,7 @@ METHODS: dict[str, str] = {
     "zero_velocity": "export.methods.baselines:ZeroVelocityMethod",
     "regression": "export.methods.baselines:RegressionMethod",
     "wat": "export.methods.wat:WatMethod",
+    "wat_transformer": "export.methods.wat_transformer:WatTransformerMethod",
     "lcp_vae": "export.methods.lcp_vae:LcpVaeMethod",
     "keyposes": "export.methods.keyposes:KeyposesMethod",
 }

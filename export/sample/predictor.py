@@ -38,6 +38,7 @@ PREDICTORS: dict[str, str] = {
     "zero_velocity": "export.sample.direct:DirectPredictor",
     "regression": "export.sample.direct:DirectPredictor",
     "wat": "export.sample.wat:WatPredictor",
+    "wat_transformer": "export.sample.wat:WatPredictor",      # same graphs' signatures as "wat"
     "lcp_vae": "export.sample.lcp_vae:LcpVaePredictor",
     "keyposes": "export.sample.keyposes:KeyposesPredictor",
 }

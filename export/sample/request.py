@@ -47,6 +47,7 @@ class Prediction:
     notes: list[str] = field(default_factory=list)
     curves: list[dict] = field(default_factory=list)     # {"id", "title", "series": [K][T], "levels", "frames"}
     readouts: list[dict] = field(default_factory=list)   # {"label", "value", "unit"}
+    ghosts: dict | None = None                           # {"frames": [K][n], "poses": [K][n, J, 3]}
     # Decisions with their distance to the threshold that made them (stop tests, sampled labels):
     # the end-to-end vectors keep only cases whose smallest margin is at least 1e-3.
     margins: list[float] = field(default_factory=list)
@@ -55,6 +56,9 @@ class Prediction:
         return {"k": int(self.futures.shape[0]), "frames": int(self.futures.shape[1]),
                 "lengths": [int(x) for x in self.lengths], "samples": self.samples, "notes": self.notes,
                 "curves": self.curves, "readouts": self.readouts,
+                **({"ghosts": {"frames": self.ghosts["frames"],
+                               "poses": [np.asarray(p, np.float32).tolist() for p in self.ghosts["poses"]]}}
+                   if self.ghosts is not None else {}),
                 "futures": self.futures.astype(np.float32).tolist()}
 
 

@@ -19,6 +19,7 @@ export function loadManifest(): Manifest {
 export function nodePredictor(manifest: Manifest, id: string): Predictor {
   const entry = manifest.models.find((m) => m.id === id);
   if (!entry) throw new Error(`no model ${id}`);
-  const runner = new OrtRunner(ort as unknown as OrtModule, entry, async (file) => new Uint8Array(readFileSync(new URL(file, modelsDir))));
-  return createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner });
+  const load = async (file: string) => new Uint8Array(readFileSync(new URL(file, modelsDir)));
+  const runner = new OrtRunner(ort as unknown as OrtModule, entry, load);
+  return createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: load });
 }

@@ -71,7 +71,7 @@ export interface ControlSpec {
   default: unknown;
 }
 
-export type Method = 'zero_velocity' | 'regression' | 'wat' | 'lcp_vae' | 'keyposes';
+export type Method = 'zero_velocity' | 'regression' | 'wat' | 'wat_transformer' | 'lcp_vae' | 'keyposes';
 
 export interface ModelParams {
   history_frames: number;

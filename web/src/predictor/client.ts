@@ -1,7 +1,7 @@
 // The page's handle on the predictor worker. The page never imports onnxruntime: only the
 // worker does (tests/web/worker-structure.test.ts checks it).
 import type { Manifest } from '../contract/types';
-import type { FromWorker, ToWorker } from './protocol';
+import type { FromWorker, GraphTiming, ToWorker } from './protocol';
 import { PredictError, Superseded, type History, type Prediction, type PredictRequest } from './types';
 
 export class ModelLoadError extends Error {
@@ -11,8 +11,11 @@ export class ModelLoadError extends Error {
   }
 }
 
+/** What the worker measured for one prediction (bench/ and the memory test read it). */
+export interface Measured { ms: number; timings?: GraphTiming[]; wasmBytes?: number | null }
+
 interface Pending {
-  resolve: (v: { prediction?: Prediction; ms: number }) => void;
+  resolve: (v: Measured & { prediction?: Prediction }) => void;
   reject: (e: Error) => void;
   onProgress?: (loaded: number, total: number) => void;
 }
@@ -31,7 +34,11 @@ export class PredictorClient {
   private nextId = 1;
   private pending = new Map<number, Pending>();
 
-  constructor(baseUrl: string, manifest: Manifest, worker?: Worker) {
+  /**
+   * `instrument` makes the worker report its wasm memory with each result (bench/ and the memory
+   * test); a page can also ask for it by setting globalThis.__mfInstrument = true before it loads.
+   */
+  constructor(baseUrl: string, manifest: Manifest, worker?: Worker, options: { instrument?: boolean } = {}) {
     if (!webAssemblyAvailable()) throw new ModelLoadError('WebAssembly is not available in this browser, so models cannot run here');
     this.worker = worker ?? new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
     this.worker.onmessage = (ev: MessageEvent<FromWorker>) => this.receive(ev.data);
@@ -40,7 +47,8 @@ export class PredictorClient {
       for (const p of this.pending.values()) p.reject(err);
       this.pending.clear();
     };
-    this.send({ type: 'init', baseUrl, manifest });
+    const instrument = options.instrument ?? (globalThis as { __mfInstrument?: unknown }).__mfInstrument === true;
+    this.send({ type: 'init', baseUrl, manifest, instrument });
   }
 
   private send(msg: ToWorker): void {
@@ -52,7 +60,7 @@ export class PredictorClient {
     if (!p) return;
     if (msg.type === 'progress') { p.onProgress?.(msg.loaded, msg.total); return; }
     this.pending.delete(msg.id);
-    if (msg.type === 'result') p.resolve({ prediction: msg.prediction, ms: msg.ms });
+    if (msg.type === 'result') p.resolve({ prediction: msg.prediction, ms: msg.ms, timings: msg.timings, wasmBytes: msg.wasmBytes });
     else if (msg.type === 'loaded') p.resolve({ ms: msg.ms });
     else if (msg.kind === 'superseded') p.reject(new Superseded());
     else if (msg.kind === 'predict') p.reject(new PredictError(msg.message));
@@ -60,7 +68,7 @@ export class PredictorClient {
   }
 
   private call(msg: ToWorker & { id: number }, onProgress?: Pending['onProgress']) {
-    return new Promise<{ prediction?: Prediction; ms: number }>((resolve, reject) => {
+    return new Promise<Measured & { prediction?: Prediction }>((resolve, reject) => {
       this.pending.set(msg.id, { resolve, reject, onProgress });
       this.send(msg);
     });
@@ -73,9 +81,9 @@ export class PredictorClient {
 
   /** Predict for one view; a newer request from the same view rejects this one with Superseded. */
   async predict(view: string, model: string, history: History, request: PredictRequest,
-    onProgress?: (loaded: number, total: number) => void): Promise<{ prediction: Prediction; ms: number }> {
+    onProgress?: (loaded: number, total: number) => void): Promise<Measured & { prediction: Prediction }> {
     const r = await this.call({ type: 'predict', id: this.nextId++, view, model, history, request }, onProgress);
-    return { prediction: r.prediction!, ms: r.ms };
+    return { ...r, prediction: r.prediction! };
   }
 
   dispose(): void {

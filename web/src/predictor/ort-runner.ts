@@ -2,16 +2,19 @@
 // runtime module itself is passed in, so the page never loads onnxruntime on the main thread.
 import type * as Ort from 'onnxruntime-web';
 import type { ModelEntry } from '../contract/types';
-import type { GraphRunner, Tensor } from './types';
+import type { GraphTiming } from './protocol';
+import type { FileLoader, GraphRunner, Tensor } from './types';
 
 export type OrtModule = typeof Ort;
-/** Fetches a model file's bytes; `onProgress` reports bytes received so far. */
-export type FileLoader = (file: string, onProgress?: (loaded: number) => void) => Promise<Uint8Array>;
+export type { FileLoader };
+export type { GraphTiming };
 
 export class OrtRunner implements GraphRunner {
   private sessions = new Map<string, Promise<Ort.InferenceSession>>();
 
-  constructor(private readonly ort: OrtModule, private readonly entry: ModelEntry, private readonly load: FileLoader) {}
+  /** `onRun` receives each session.run's timing (the worker returns them with the result; bench/ reads them). */
+  constructor(private readonly ort: OrtModule, private readonly entry: ModelEntry, private readonly load: FileLoader,
+    private readonly onRun?: (t: GraphTiming) => void) {}
 
   /** Create every graph's session now (lazily per model: called when a model is first used). */
   async loadAll(onProgress?: (loaded: number, total: number) => void): Promise<void> {
@@ -40,7 +43,9 @@ export class OrtRunner implements GraphRunner {
     const session = await this.session(role);
     const inputs: Record<string, Ort.Tensor> = {};
     for (const [name, t] of Object.entries(feeds)) inputs[name] = new this.ort.Tensor('float32', t.data, t.dims);
+    const t0 = performance.now();
     const out = await session.run(inputs);
+    this.onRun?.({ role, batch: Object.values(feeds)[0]?.dims[0] ?? 0, ms: performance.now() - t0 });
     const result: Record<string, Tensor> = {};
     for (const spec of this.entry.graphs[role].outputs) {
       const t = out[spec.name];

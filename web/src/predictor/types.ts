@@ -81,6 +81,8 @@ export interface Prediction {
   ghosts?: Ghosts;
   /** Short measured read-outs, e.g. { label: 'diversity', value: 0.41, unit: 'm' }. */
   readouts?: { label: string; value: number; unit?: string }[];
+  /** Distance of each thresholded decision (stop tests, sampled uniforms) to its threshold. */
+  margins?: number[];
 }
 
 export interface Predictor {
@@ -88,12 +90,17 @@ export interface Predictor {
   predict(history: History, request: PredictRequest, isCancelled?: () => boolean): Promise<Prediction>;
 }
 
+/** Reads one of the model's files (named in the manifest) as bytes. */
+export type FileLoader = (file: string, onProgress?: (loaded: number) => void) => Promise<Uint8Array>;
+
 export interface PredictorContext {
   entry: ModelEntry;
   skeleton: Skeleton;
   actions: string[];
   fps: number;
   runner: GraphRunner;
+  /** For non-graph artefacts such as keypose centres. */
+  loadFile: FileLoader;
 }
 
 export class PredictError extends Error {

@@ -1,9 +1,10 @@
 // The predictor worker: owns onnxruntime-web and every session, runs one job at a time.
 // A new request from a view supersedes that view's queued or running request; requests from
 // other views wait their turn.
+import { captureWasmMemory, wasmMemoryBytes } from '../bench/wasm-memory';
 import type { Manifest } from '../contract/types';
 import { createPredictor } from './factory';
-import { OrtRunner, type OrtModule } from './ort-runner';
+import { OrtRunner, type GraphTiming, type OrtModule } from './ort-runner';
 import type { ErrorKind, FromWorker, ToWorker } from './protocol';
 import { Scheduler, type Job as QueuedJob } from './scheduler';
 import { PredictError, Superseded, type Predictor } from './types';
@@ -16,6 +17,8 @@ let baseUrl = '';
 let ortModule: Promise<OrtModule> | null = null;
 const predictors = new Map<string, { predictor: Predictor; runner: OrtRunner }>();
 const scheduler = new Scheduler<Job>();
+let instrumented = false;
+let timings: GraphTiming[] = []; // the running prediction's graph calls (one job runs at a time)
 
 function post(msg: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(msg, transfer);
@@ -30,15 +33,18 @@ function runtime(): Promise<OrtModule> {
   return ortModule;
 }
 
+/** A model file (graph or JSON artefact) that could not be fetched. */
+class ModelFileError extends Error {}
+
 async function fetchBytes(file: string, onProgress?: (n: number) => void): Promise<Uint8Array> {
   const url = new URL(`models/${file}`, baseUrl).href;
   let res: Response;
   try {
     res = await fetch(url);
   } catch (err) {
-    throw new Error(`models/${file} could not be loaded (${(err as Error).message})`);
+    throw new ModelFileError(`models/${file} could not be loaded (${(err as Error).message})`);
   }
-  if (!res.ok) throw new Error(`models/${file} could not be loaded (HTTP ${res.status})`);
+  if (!res.ok) throw new ModelFileError(`models/${file} could not be loaded (HTTP ${res.status})`);
   if (!res.body) return new Uint8Array(await res.arrayBuffer());
   const reader = res.body.getReader();
   const chunks: Uint8Array[] = [];
@@ -62,9 +68,9 @@ async function predictorFor(model: string, id: number): Promise<{ predictor: Pre
     if (!manifest) throw new Error('the worker has no manifest yet');
     const entry = manifest.models.find((m) => m.id === model);
     if (!entry) throw new PredictError(`unknown model '${model}'`);
-    const runner = new OrtRunner(await runtime(), entry, fetchBytes);
+    const runner = new OrtRunner(await runtime(), entry, fetchBytes, (t) => timings.push(t));
     await runner.loadAll((loaded, total) => post({ type: 'progress', id, model, loaded, total }));
-    const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner });
+    const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: fetchBytes });
     p = { predictor, runner };
     predictors.set(model, p);
   }
@@ -80,14 +86,18 @@ async function execute(job: Job): Promise<void> {
     return;
   }
   const { predictor } = await predictorFor(msg.model, msg.id);
+  timings = [];
   const t0 = performance.now();
   const prediction = await predictor.predict(msg.history, msg.request, () => job.cancelled);
-  post({ type: 'result', id: msg.id, prediction, ms: performance.now() - t0 }, [prediction.futures.buffer]);
+  const ms = performance.now() - t0;
+  post({ type: 'result', id: msg.id, prediction, ms, timings, ...(instrumented ? { wasmBytes: wasmMemoryBytes() } : {}) },
+    [prediction.futures.buffer]);
 }
 
 function kindOf(err: unknown, job: Job): ErrorKind {
   if (err instanceof Superseded) return 'superseded';
   if (err instanceof PredictError) return 'predict';
+  if (err instanceof ModelFileError) return 'load';
   return job.msg.type === 'load' || !predictors.has(job.msg.model) ? 'load' : 'internal';
 }
 
@@ -104,6 +114,7 @@ scope.onmessage = (ev: MessageEvent<ToWorker>) => {
   if (msg.type === 'init') {
     manifest = msg.manifest;
     baseUrl = msg.baseUrl;
+    if (msg.instrument && !instrumented) { instrumented = true; captureWasmMemory(); } // before onnxruntime loads
     return;
   }
   const job: Job = { id: msg.id, view: msg.type === 'predict' ? msg.view : undefined, cancelled: false, msg };

@@ -1,0 +1,163 @@
+"""LCP-VAE as a Method: windows -> CS-VAE + LCP-VAE losses (Eq. 9) -> condition and decoder graphs.
+
+The same method trains the Table 4 baselines (config `model.variant`: "cvae_h" row 2,
+"cvae_zc" row 3); their graphs and manifest params tell the predictor how to sample.
+"""
+from __future__ import annotations
+
+import numpy as np
+import torch
+from torch import nn
+
+from ..data.clip import Clip
+from ..data.skeleton import SKELETON
+from ..data.sources import FPS
+from ..data.windows import windows
+from ..models.lcp_vae import VARIANTS, ConditionGraph, DecoderGraph, LcpVae
+from ..ops.kl import kl_lcp, kl_standard_normal
+from ..ops.kl_annealing import kl_weight
+from .base import GraphDef, Method, TensorSpec, TrainingData
+
+J = SKELETON.num_joints
+
+
+class LcpVaeMethod(Method):
+    name = "lcp_vae"
+
+    def __init__(self, cfg: dict):
+        super().__init__(cfg)
+        m, t = cfg.get("model", {}), cfg.get("train", {})
+        self.variant = m.get("variant", "lcp")
+        if self.variant not in VARIANTS:
+            raise ValueError(f"model.variant must be one of {sorted(VARIANTS)}, got {self.variant!r}")
+        steps = int(t.get("steps", 1000))
+        # Appendix C decays teacher forcing linearly to fully autoregressive "after a certain
+        # number of epochs"; here after a fraction of the steps, then trains autoregressively.
+        self.teacher_forcing_steps = int(round(float(t.get("teacher_forcing_fraction", 0.5)) * steps))
+        # Eq. 9's lambda rises 0 -> 1 along a logistic curve, then stays at 1 (Section 4.2).
+        self.kl_anneal_steps = int(round(float(t.get("kl_anneal_fraction", 0.4)) * steps))
+        self.rec_units = t.get("rec_units", "normalised")
+        if self.rec_units not in ("normalised", "metres"):
+            raise ValueError(f"train.rec_units must be 'normalised' or 'metres', got {self.rec_units!r}")
+        self.rec_weight = torch.ones(J * 3)
+
+    def prepare(self, clips: list[Clip]) -> TrainingData:
+        t = self.cfg.get("train", {})
+        n, f = self.history_frames, self.future_frames
+        ws = windows(clips, "train", n + f, n, stride=int(t.get("stride", 1)), mirror=bool(t.get("mirror", True)))
+        if not ws:
+            raise ValueError(f"no training windows: every clip's training part is shorter than {n + f} frames")
+        motion = torch.from_numpy(np.stack([w.positions for w in ws])).float()   # [W, N+T, J, 3]
+        flat = motion.reshape(-1, J * 3)
+        stats = {"pose_mean": flat.mean(0), "pose_std": flat.std(0).clamp_min(1e-2)}
+        return TrainingData({"history": motion[:, :n], "future": motion[:, n:]}, stats, {"windows": len(ws)})
+
+    def build(self, data: TrainingData) -> nn.Module:
+        m = self.cfg.get("model", {})
+        # Eq. 8 sums squared errors in the data's units. The model works in per-coordinate
+        # normalised units; "metres" weighs each coordinate by its variance to undo that. The
+        # served config uses metres: in normalised units the reconstruction outweighs Eq. 5 so
+        # much that sigma_c settled near 0.1 and the K = 10 diversity halved (measured).
+        if self.rec_units == "metres":
+            self.rec_weight = data.stats["pose_std"].square()
+        return LcpVae(self.variant, J, self.history_frames, self.future_frames, int(m.get("hidden", 64)),
+                      int(m.get("embed", 64)), int(m.get("latent", 16)), data.stats["pose_mean"],
+                      data.stats["pose_std"])
+
+    def schedule(self, step: int) -> tuple[float, float]:
+        """(teacher-forcing probability, KL weight lambda) at a training step."""
+        tf = max(0.0, 1.0 - step / self.teacher_forcing_steps) if self.teacher_forcing_steps > 0 else 0.0
+        return tf, kl_weight(step, self.kl_anneal_steps)
+
+    def loss(self, model, batch, step):
+        teacher_forcing, lam = self.schedule(step)
+        out = model(batch["history"], batch["future"], teacher_forcing)
+        terms = components(self.variant, out, self.rec_weight)
+        kl = terms["kl_c"] + terms["kl"]
+        total = lam * kl + terms["rec_history"] + terms["rec_future"]      # Eq. 9
+        logs = {k: float(v.detach()) for k, v in terms.items()}
+        logs.update(lam=lam, tf=teacher_forcing)
+        return total, logs
+
+    def graphs(self, model: nn.Module) -> dict[str, GraphDef]:
+        n, d = self.history_frames, model.latent
+        gen = torch.Generator().manual_seed(0)
+        mean_pose = model.pose_mean.reshape(1, J, 3)
+        history = mean_pose.expand(2, n, J, 3) + 0.05 * torch.randn(2, n, J, 3, generator=gen)
+        cond = ConditionGraph(model)
+        cond_outputs = [TensorSpec(name, ["batch", model.hidden if name == "h_t" else d]) for name in cond.outputs]
+        z = torch.randn(2, d, generator=gen)
+        last_pose = mean_pose.expand(2, J, 3) + 0.05 * torch.randn(2, J, 3, generator=gen)
+        inputs, examples = [TensorSpec("z", ["batch", d]), TensorSpec("last_pose", ["batch", J, 3])], (z, last_pose)
+        if model.decoder_condition:
+            c = torch.randn(2, model.decoder_condition_size, generator=gen)
+            inputs.append(TensorSpec("c", ["batch", model.decoder_condition_size]))
+            examples = examples + (c,)
+        return {
+            "condition": GraphDef(cond, (history,), [TensorSpec("history", ["batch", n, J, 3])], cond_outputs),
+            "decoder": GraphDef(DecoderGraph(model), examples, inputs,
+                                [TensorSpec("future", ["batch", self.future_frames, J, 3])]),
+        }
+
+    def params(self, model: nn.Module) -> dict:
+        c = model.decoder_condition
+        return {**super().params(model), "latent_size": model.latent, "table4_row": VARIANTS[self.variant],
+                # How the predictor samples z: from the condition's posterior N(mu_c, sigma_c^2)
+                # (Eq. 4 at inference, Algorithm 2 line 8) or from N(0, I) (rows 2 and 3).
+                "prior": "conditional" if self.variant == "lcp" else "standard_normal",
+                # The decoder graph's extra input c: h_t (row 2), a sampled z_c (row 3), or none.
+                "decoder_condition": {"name": c, "size": model.decoder_condition_size} if c else None}
+
+    def controls(self, actions: list[str]) -> list[dict]:
+        return [
+            {"id": "k", "type": "int", "label": "Samples (K)", "min": 1, "max": 50, "step": 1, "default": 10,
+             "help": "Futures drawn from the same history, decoded in one batch."},
+            {"id": "horizon", "type": "number", "label": "Horizon (s)", "min": 0.5, "max": 6, "step": 0.5,
+             "default": round(self.future_frames / FPS, 3),
+             "help": "How far to predict; past one call each sample recurses on its own last frames with a new z."},
+            {"id": "sigma_scale", "type": "number", "label": "Sigma scale", "min": 0, "max": 2, "step": 0.05,
+             "default": 1,
+             "help": "Scales the sampled spread: z = mu_c + s*sigma_c*eps. 0 decodes the most likely "
+                     "future z = mu_c (all K samples equal); the diversity read-out grows with s."},
+        ]
+
+
+def reconstruction(x_hat: torch.Tensor, x: torch.Tensor, weight: torch.Tensor) -> torch.Tensor:
+    """Eq. 8 per example: squared errors [B, F, P] summed over frames and coordinates (each
+    coordinate weighted), averaged over the batch."""
+    return ((x_hat - x).square() * weight).sum((1, 2)).mean()
+
+
+def components(variant: str, out: dict, rec_weight: torch.Tensor) -> dict[str, torch.Tensor]:
+    """The loss terms of Eq. 9 (batch means) for one forward pass."""
+    zero = out["future_hat"].new_zeros(())
+    terms = {"rec_future": reconstruction(out["future_hat"], out["future_norm"], rec_weight),
+             "rec_history": (reconstruction(out["history_hat"], out["history_norm"], rec_weight)
+                             if "history_hat" in out else zero),
+             "kl_c": kl_standard_normal(out["mu_c"], out["sigma_c"]).mean() if "mu_c" in out else zero}
+    if variant == "lcp":
+        # CS-VAE is frozen for Eq. 6: no gradient reaches mu_c, sigma_c through this term.
+        terms["kl"] = kl_lcp(out["mu"], out["sigma"], out["mu_c"].detach(), out["sigma_c"].detach()).mean()
+    else:
+        terms["kl"] = kl_standard_normal(out["mu"], out["sigma"]).mean()
+    return terms
+
+
+@torch.no_grad()
+def loss_components(method: LcpVaeMethod, model: LcpVae, data: TrainingData, batch_size: int = 256,
+                    seed: int = 0) -> dict[str, float]:
+    """Each term of Eq. 9 over all training windows, fully autoregressive (as trained at the end),
+    plus the future's mean per-joint error in metres: for reporting where training ended."""
+    torch.manual_seed(seed)
+    model.eval()
+    sums: dict[str, float] = {}
+    n = len(data)
+    for a in range(0, n, batch_size):
+        hist, fut = data.tensors["history"][a:a + batch_size], data.tensors["future"][a:a + batch_size]
+        out = model(hist, fut, 0.0)
+        terms = {k: float(v) for k, v in components(model.variant, out, method.rec_weight).items()}
+        err = torch.linalg.vector_norm(model.denormalise(out["future_hat"]) - fut, dim=-1).mean()
+        terms["future_mpjpe_m"] = float(err)
+        for k, v in terms.items():
+            sums[k] = sums.get(k, 0.0) + v * len(hist)
+    return {k: v / n for k, v in sums.items()}

@@ -1,0 +1,101 @@
+"""Predictor for LCP-VAE and its Table 4 baselines: condition graph, sample z, K futures in one decoder call.
+
+Twin of web/src/predictor/lcp-vae.ts. Per graph call (a horizon beyond future_frames recurses on
+each sample's own last history_frames frames, re-canonicalised):
+  full model (params.prior "conditional"): z = mu_c + s*sigma_c*eps (Eq. 4 at inference with z = z_c,
+      Algorithm 2 line 8); s = 0 decodes the most likely future z = mu_c (appendix E);
+  row 2 (prior "standard_normal", c = h_t): z = s*eps, c = h_t;
+  row 3 (prior "standard_normal", c = z_c): c = mu_c + s*sigma_c*eps_c, z = s*eps.
+Draw order, per graph call, from one Prng(seed): for row 3 first eps_c [K, d_c], then eps [K, d];
+otherwise eps [K, d]; each array row-major (sample, then latent dimension), two uniforms per normal.
+Sampling arithmetic is float64 (mu + (s*sigma)*eps, in that order) rounded to float32 for the graph.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..rng import Prng
+from .canonical import from_canonical, to_canonical
+from .predictor import Predictor
+from .request import Prediction, PredictError, Request, horizon_frames
+
+
+def sample_latents(prng: Prng, cond: dict[str, np.ndarray], k: int, scale: float,
+                   params: dict) -> tuple[np.ndarray, np.ndarray | None]:
+    """Condition-graph outputs (batch 1 or K) -> (z [K, d], c [K, .] or None), float32."""
+    d = params["latent_size"]
+    c_spec = params.get("decoder_condition")
+    c = None
+    if params["prior"] == "conditional":
+        eps = prng.normals((k, d))
+        z = _shift_scale(cond["mu_c"], cond["sigma_c"], scale, eps, k)
+    elif params["prior"] == "standard_normal":
+        if c_spec and c_spec["name"] == "z_c":
+            eps_c = prng.normals((k, c_spec["size"]))
+            c = _shift_scale(cond["mu_c"], cond["sigma_c"], scale, eps_c, k)
+        elif c_spec and c_spec["name"] == "h_t":
+            c = np.broadcast_to(cond["h_t"].astype(np.float32), (k, c_spec["size"])).copy()
+        eps = prng.normals((k, d))
+        z = (scale * eps).astype(np.float32)
+    else:
+        raise PredictError(f"unknown LCP-VAE prior {params['prior']!r} in the manifest")
+    return z, c
+
+
+def _shift_scale(mu: np.ndarray, sigma: np.ndarray, scale: float, eps: np.ndarray, k: int) -> np.ndarray:
+    mu = np.broadcast_to(mu.astype(np.float64), (k, eps.shape[1]))
+    sigma = np.broadcast_to(sigma.astype(np.float64), (k, eps.shape[1]))
+    return (mu + scale * sigma * eps).astype(np.float32)
+
+
+def diversity(futures: np.ndarray) -> float:
+    """Average pairwise distance of K futures [K, T, J, 3] (WAT Eq. 10): over all pairs, the mean
+    over frames of the L2 norm of the whole-pose difference, in metres. 0 for K = 1."""
+    k = len(futures)
+    if k < 2:
+        return 0.0
+    flat = np.asarray(futures, dtype=np.float64).reshape(k, futures.shape[1], -1)
+    total = 0.0
+    for i in range(k):
+        for j in range(i + 1, k):
+            total += float(np.linalg.norm(flat[i] - flat[j], axis=-1).mean())
+    return 2.0 * total / (k * (k - 1))
+
+
+class LcpVaePredictor(Predictor):
+    def sigma_scale(self, req: Request) -> float:
+        spec = next(c for c in self.entry["controls"] if c["id"] == "sigma_scale")
+        return float(req.controls.get("sigma_scale", spec["default"]))
+
+    def _predict(self, history: np.ndarray, req: Request) -> Prediction:
+        n, step = self.params["history_frames"], self.params["future_frames"]
+        horizon = horizon_frames(req, self.entry, self.manifest["fps"])
+        k, scale = req.k, self.sigma_scale(req)
+        prng = Prng(req.seed)
+        c_spec = self.params.get("decoder_condition")
+        # Every sample starts from the same history: the first condition call runs once (batch 1).
+        recent = history[-n:].astype(np.float32)[None]         # [1 or K, n, J, 3]
+        pieces = []
+        done = 0
+        while done < horizon:
+            canon, angles = zip(*(to_canonical(h) for h in recent))
+            canon = np.stack(canon)
+            cond = self.runner.run("condition", {"history": canon})
+            z, c = sample_latents(prng, cond, k, scale, self.params)
+            last_pose = np.broadcast_to(canon[:, -1], (k,) + canon.shape[2:]).copy()
+            feeds = {"z": z, "last_pose": last_pose}
+            if c_spec:
+                feeds["c"] = c
+            future = self.runner.run("decoder", feeds)["future"]
+            angles = np.broadcast_to(np.asarray(angles), (k,))
+            future = np.stack([from_canonical(f, a) for f, a in zip(future, angles)])
+            pieces.append(future)
+            done += step
+            joined = np.concatenate([np.broadcast_to(recent, (k,) + recent.shape[1:]), future], 1)
+            recent = joined[:, -n:]
+        futures = np.concatenate(pieces, 1)[:, :horizon].astype(np.float32)
+        samples = [{"length": horizon, "stopped": False, "segments": [{"start": 0, "length": horizon}]}
+                   for _ in range(k)]
+        notes = ["sigma scale 0: every sample is the most likely future"] if scale == 0 and k > 1 else []
+        return Prediction(futures, np.full(k, horizon), samples, notes=notes,
+                          readouts=[{"label": "diversity", "value": diversity(futures), "unit": "m"}])

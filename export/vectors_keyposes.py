@@ -1,0 +1,102 @@
+"""The `keyposes` family of shared test vectors: keypose extraction, labels and pruning, the
+proximity softmax, interpolation from the present pose, and drawing an index with a temperature.
+
+Independent of any trained model: centres are keyposes of committed clips, so the vectors change
+only when this code or the clips change. TypeScript must match to 1e-6 (indices exactly).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .ops import keyposes as kp
+from .ops.keypose_interpolation import interpolate
+from .ops.proximity import face_forward, label_distribution, proximity, sample_index
+from .rng import Prng
+
+
+def _window(name: str, start: int, frames: int) -> np.ndarray:
+    from .data.clip_json import read_clip
+    from .paths import CLIPS_DIR
+    return read_clip(CLIPS_DIR / f"{name}.json").positions[start:start + frames]
+
+
+def keyposes_vector() -> dict:
+    extraction = []
+    for name, start, frames, threshold in [("walker_walk_forward", 0, 30, 0.3), ("spin", 90, 30, 0.3),
+                                           ("cartwheel", 10, 40, 0.3), ("kick", 0, 46, 0.15), ("backflip", 0, 52, 0.5)]:
+        pos = _window(name, start, frames)
+        extraction.append({"clip": name, "start": start, "threshold": threshold, "positions": pos.tolist(),
+                           "keyposes": kp.extract(pos, threshold),
+                           "errors": kp.frame_errors(pos, 0, len(pos) - 1).tolist()})
+
+    # Centres: every keypose of two clips, each facing +z; values: keyposes of a third clip.
+    centres = face_forward(np.concatenate([_window("walk", 0, 38)[kp.extract(_window("walk", 0, 38), 0.3)],
+                                           _window("kick", 0, 46)[kp.extract(_window("kick", 0, 46), 0.3)]]))
+    run = _window("run", 0, 24)
+    raw = run[kp.extract(run, 0.2)]
+    values = face_forward(raw)
+    labels, margins = kp.nearest_centre(values, centres)
+    labelling = {"centres": centres.tolist(), "raw": raw.tolist(), "values": values.tolist(),
+                 "proximity": proximity(values, centres).tolist(), "labels": labels.tolist(),
+                 "label_margins": margins.tolist(),
+                 "distributions": [{"temperature": t, "p": label_distribution(values, centres, t).tolist()}
+                                   for t in (0.02, 0.0507, 0.3)]}
+    pruning = [{"labels": ls, "keep": kp.prune(ls)}
+               for ls in ([3, 3, 3, 1], [1, 2, 2, 2, 2, 5, 5], [4], [4, 4], [0, 1, 0, 1], [7, 7, 7, 7, 7])]
+    durations = {"bounds": list(kp.DURATION_BOUNDS),
+                 "cases": [[d, kp.duration_class(d)] for d in (1, 4, 5, 11, 12, 16, 17, 29, 30, 90)]}
+
+    interpolation = []
+    for n_keys, frames in [(3, 40), (1, 10), (4, 20)]:
+        durs = [4, 7, 14, 19, 30][:n_keys] if n_keys != 1 else [7]
+        keys = centres[[0, 5, 2, 8][:n_keys]]
+        present = run[-1]
+        interpolation.append({"present": present.tolist(), "keyposes": keys.tolist(), "durations": durs, "frames": frames,
+                              "future": interpolate(present, keys, durs, frames).tolist()})
+
+    rng = Prng(2024)
+    sampling = []
+    for temperature in (0.05, 0.3, 1.0, 1.5):
+        logits = [rng.normal() * 2 for _ in range(12)]
+        for _ in range(4):
+            u = rng.uniform()
+            index, margin = sample_index(np.asarray(logits, np.float32), temperature, u)
+            sampling.append({"logits": np.asarray(logits, np.float32).astype(float).tolist(), "temperature": temperature,
+                             "u": u, "index": index, "margin": margin})
+    return {"about": "keypose extraction (indices exactly, frame errors to 1e-6), nearest-centre labels, pruning and "
+                     "duration classes exactly, proximity and label distributions to 1e-6, interpolation from the "
+                     "present pose to 1e-6, temperature draws (index exactly, margin to 1e-9)",
+            "extraction": extraction, "labelling": labelling, "pruning": pruning, "durations": durations,
+            "interpolation": interpolation, "sampling": sampling}
+
+
+# (clip, first history frame, horizon, controls) for the end-to-end vector.
+E2E_CASES = [("walker_walk_forward", 3, 150, {"temperature": 0.3, "refine": True}),
+             ("spin", 90, 45, {"temperature": 0.5, "refine": False}),
+             ("walker_turn_left0", 0, 45, {"temperature": 0.3, "refine": False})]
+
+
+def keyposes_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:
+    """End-to-end cases for a served Keyposes model: K = 4 futures whose label sequences differ and
+    whose every draw keeps at least `margin` to its CDF bounds (the first such seed from 7 on)."""
+    from .data.clip_json import read_clip
+    from .paths import CLIPS_DIR
+    from .sample.request import Request
+    n = entry["params"]["history_frames"]
+    cases = []
+    for clip, start, horizon, controls in E2E_CASES:
+        history = read_clip(CLIPS_DIR / f"{clip}.json").positions[start:start + n].astype(np.float32)
+        for seed in range(7, 200):
+            req = Request(k=4, seed=seed, horizon_frames=horizon, controls=dict(controls))
+            pred = predictor.predict(history, req)
+            labels = [s["labels"] for s in pred.samples]
+            if min(pred.margins) >= margin and len({tuple(x) for x in labels}) > 1:
+                break
+        else:
+            raise ValueError(f"no seed in 7..199 gives {clip}@{start} margins of at least {margin}")
+        cases.append({"model": entry["id"], "model_hash": entry["hash"], "clip": clip, "start": start,
+                      "history": history.tolist(), "request": req.to_json(), "lengths": pred.lengths.tolist(),
+                      "labels": labels, "marks": [s["marks"] for s in pred.samples],
+                      "min_margin": min(pred.margins),
+                      "futures": np.round(pred.futures.astype(np.float64), 6).tolist()})
+    return cases

@@ -1,0 +1,141 @@
+"""Keyposes: training data, a tiny train + export with parity, and the committed model's predictor
+(K futures, no jump, marks and ghosts, size cap, bad input)."""
+import gzip
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+from export.config import load_config, override
+from export.data.clip_json import read_clip
+from export.manifest import manifest_document, read_manifest, write_manifest
+from export.methods import method_for
+from export.methods.keyposes import cluster_keyposes, centre_distances
+from export.onnx.export import check_parity, to_onnx
+from export.ops.proximity import label_distribution
+from export.paths import CLIPS_DIR, MODELS_DIR
+from export.pipeline import export, train
+from export.sample.keyposes import KeyposesPredictor
+from export.sample.predictor import load_predictor
+from export.sample.request import PredictError, Request
+
+CFG = load_config("keyposes.json")
+MANIFEST = read_manifest(MODELS_DIR / "manifest.json")
+ENTRY = next((m for m in MANIFEST["models"] if m["method"] == "keyposes"), None)
+committed = pytest.mark.skipif(ENTRY is None, reason="no Keyposes model in public/models")
+SIZE_CAP = 300_000   # bytes: KP-GRU step + refinement, gzip -9
+
+TINY = {"keyposes.clusters": 12, "model.hidden": 8, "model.refine.hidden": 8, "model.refine.bases": 6,
+        "future_frames": 40, "train.steps": 4, "train.batch_size": 16, "train.stride": 4}
+
+
+def _history(clip: str, start: int, frames: int) -> np.ndarray:
+    return read_clip(CLIPS_DIR / f"{clip}.json").positions[start:start + frames]
+
+
+def test_training_windows_come_from_train_ranges_only(clips):
+    method = method_for(CFG)
+    ws = method._windows(list(clips.values()))
+    assert ws
+    for w in ws:
+        ranges = clips[w.clip].split.train
+        assert all(any(a <= f < b for a, b in ranges) for f in w.frames), w.clip
+        assert len(w.positions) >= CFG["history_frames"] + CFG["keyposes"]["min_future_frames"]
+
+
+def test_tiny_model_trains_exports_and_predicts(clips, tmp_path):
+    cfg = override(CFG, **TINY)
+    subset = [clips[n] for n in ("walk", "run", "kick", "jump")]
+    method, model = train(cfg, subset, progress=False)
+    data = method.notes
+    assert data["windows"] > 0 and sum(data["observed_histogram"]) >= data["windows"]
+    assert 0.59 < data["mean_top_probability"] < 0.61          # the temperature hits its target
+    for role, graph in method.graphs(model).items():
+        assert check_parity(graph, to_onnx(graph)) < 1e-4, role
+    entry = export(method, model, cfg, tmp_path, ["walk"], "sha256:" + "0" * 64, "keyposes.json")
+    assert set(entry["graphs"]) == {"step", "refine"} and entry["files"] == {"centres": "keyposes.centres.json"}
+    doc = json.loads((tmp_path / "keyposes.centres.json").read_text())
+    assert np.asarray(doc["centres"]).shape == (12, 18, 3)
+    manifest = manifest_document([entry], ["walk"], "sha256:" + "0" * 64)
+    write_manifest(manifest, tmp_path / "manifest.json")
+    pred = KeyposesPredictor(entry, manifest, tmp_path).predict(
+        _history("walker_walk_forward", 0, 30), Request(k=3, seed=1, horizon_frames=40))
+    assert pred.futures.shape == (3, 40, 18, 3) and np.all(np.isfinite(pred.futures))
+
+
+@committed
+def test_committed_centres_and_temperature_meet_their_targets(clips):
+    k = ENTRY["params"]["keyposes"]
+    centres = np.asarray(json.loads((MODELS_DIR / ENTRY["files"]["centres"]).read_text())["centres"])
+    values = cluster_keyposes(list(clips.values()), k["threshold"], True)
+    d = centre_distances(values, centres)
+    assert d["l2"] <= 1.05 * k["threshold"]                      # centres as fine as the extraction
+    top = label_distribution(values, centres, ENTRY["params"]["label_temperature"]).max(-1).mean()
+    assert 0.3 <= top <= 0.9
+
+
+@committed
+def test_committed_graphs_fit_the_size_cap():
+    gz = sum(len(gzip.compress((MODELS_DIR / g["file"]).read_bytes(), 9)) for g in ENTRY["graphs"].values())
+    assert gz <= SIZE_CAP
+
+
+@committed
+def test_k_futures_differ_join_the_history_and_mark_their_keyposes():
+    n = ENTRY["params"]["history_frames"]
+    history = _history("walker_turn_right0", 2, n)
+    pred = load_predictor(ENTRY["id"]).predict(history, Request(k=10, seed=3))
+    assert pred.futures.shape == (10, 150, 18, 3) and pred.lengths.tolist() == [150] * 10
+    assert len({tuple(s["labels"]) for s in pred.samples}) > 1
+    step = np.linalg.norm(pred.futures[:, 0] - history[-1], axis=-1).max()
+    assert step < 0.15                                            # no jump at the present
+    for s, frames, poses in zip(pred.samples, pred.ghosts["frames"], pred.ghosts["poses"]):
+        assert s["marks"] == frames and len(s["labels"]) == len(s["marks"]) == len(poses)
+        assert all(0 <= m < 150 for m in s["marks"]) and s["marks"] == sorted(s["marks"])
+    assert pred.margins and min(pred.margins) > 0
+    again = load_predictor(ENTRY["id"]).predict(history, Request(k=10, seed=3))
+    np.testing.assert_array_equal(again.futures, pred.futures)
+
+
+@committed
+def test_refinement_keeps_the_start_and_changes_the_motion():
+    n = ENTRY["params"]["history_frames"]
+    history = _history("walker_walk_forward", 0, n)
+    p = load_predictor(ENTRY["id"])
+    raw = p.predict(history, Request(k=4, seed=5, controls={"refine": False}))
+    ref = p.predict(history, Request(k=4, seed=5, controls={"refine": True}))
+    assert [s["labels"] for s in raw.samples] == [s["labels"] for s in ref.samples]
+    # the correction ramps in from the present (kp_refine.py), so the refined future still has no jump
+    assert np.linalg.norm(ref.futures[:, 0] - history[-1], axis=-1).max() < 0.15
+    assert np.linalg.norm(ref.futures[:, 0] - raw.futures[:, 0], axis=-1).max() < 0.05
+    assert np.abs(ref.futures - raw.futures).max() > 1e-3
+
+
+@committed
+@pytest.mark.parametrize("controls, message", [
+    ({"temperature": 0}, "Temperature must be between 0.05 and 1.5, got 0"),
+    ({"temperature": -0.5}, "Temperature must be between"),
+    ({"refine": 1}, "Refine must be true or false"),
+])
+def test_bad_controls_get_clear_messages(controls, message):
+    with pytest.raises(PredictError, match=message):
+        load_predictor(ENTRY["id"]).predict(_history("walker_walk_forward", 0, 30), Request(k=2, controls=controls))
+
+
+@committed
+def test_a_history_with_too_few_keyposes_is_rejected():
+    still = np.repeat(_history("walker_walk_forward", 0, 1), ENTRY["params"]["history_frames"], axis=0)
+    with pytest.raises(PredictError, match="the history yields 2 keyposes at the 0.3 m threshold; "
+                                           "Keyposes needs at least 3"):
+        load_predictor(ENTRY["id"]).predict(still, Request(k=2))
+
+
+@committed
+def test_a_missing_centres_file_is_named(tmp_path):
+    shutil.copy(MODELS_DIR / "manifest.json", tmp_path / "manifest.json")
+    for g in ENTRY["graphs"].values():
+        shutil.copy(MODELS_DIR / g["file"], tmp_path / g["file"])
+    p = load_predictor(ENTRY["id"], tmp_path)
+    with pytest.raises(FileNotFoundError, match="keyposes.centres.json: keypose centres file missing"):
+        p.predict(_history("walker_walk_forward", 0, 30), Request(k=2))

@@ -1,0 +1,123 @@
+// The Keyposes predictor in Node on the committed model: reproduces the Python end-to-end cases,
+// samples differing label sequences, joins the history without a jump, and rejects bad input
+// with clear messages.
+import { describe, expect, it } from 'vitest';
+import { readFileSync } from 'node:fs';
+import * as ort from 'onnxruntime-web';
+import type { Manifest } from '../../web/src/contract/types';
+import { KeyposesPredictor } from '../../web/src/predictor/keyposes';
+import { OrtRunner, type OrtModule } from '../../web/src/predictor/ort-runner';
+import { PredictError, type History } from '../../web/src/predictor/types';
+import { loadManifest } from './helpers/models';
+
+const modelsDir = new URL('../../public/models/', import.meta.url);
+const manifest: Manifest = loadManifest();
+const entry = manifest.models.find((m) => m.method === 'keyposes');
+const J = manifest.skeleton.joints.length;
+const readModelFile = async (file: string) => new Uint8Array(readFileSync(new URL(file, modelsDir)));
+
+function predictor(loadFile = readModelFile) {
+  const runner = new OrtRunner(ort as unknown as OrtModule, entry!, readModelFile);
+  return new KeyposesPredictor({ entry: entry!, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile });
+}
+
+function clipHistory(name: string, start: number, frames: number): History {
+  const doc = JSON.parse(readFileSync(new URL(`../../public/clips/${name}.json`, import.meta.url), 'utf8')) as { positions: number[][][] };
+  return { positions: Float32Array.from(doc.positions.slice(start, start + frames).flat(2)), frames, joints: J };
+}
+
+interface Case {
+  model: string; model_hash: string; clip: string; start: number; history: number[][][];
+  request: { k: number; seed: number; horizon_frames?: number; controls: Record<string, number | boolean> };
+  lengths: number[]; labels: number[][]; marks: number[][]; futures: number[][][][];
+}
+const e2e = JSON.parse(readFileSync(new URL('../../contract/vectors/e2e.json', import.meta.url), 'utf8')) as { cases: Case[] };
+
+describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => {
+  const cases = e2e.cases.filter((c) => c.model === entry?.id);
+
+  it('has end-to-end cases for this model', () => {
+    expect(cases.length).toBeGreaterThanOrEqual(2);
+  });
+
+  for (const c of cases) {
+    it(`${c.clip}@${c.start}: labels and marks exactly, positions to 1e-4`, async () => {
+      expect(entry!.hash).toBe(c.model_hash);
+      const pred = await predictor().predict(
+        { positions: Float32Array.from(c.history.flat(2)), frames: c.history.length, joints: J },
+        { k: c.request.k, seed: c.request.seed, horizonFrames: c.request.horizon_frames, controls: c.request.controls },
+      );
+      expect(pred.samples.map((s) => s.labels)).toEqual(c.labels);
+      expect(pred.samples.map((s) => s.marks)).toEqual(c.marks);
+      expect(Array.from(pred.lengths)).toEqual(c.lengths);
+      const want = c.futures.flat(3);
+      expect(pred.futures.length).toBe(want.length);
+      let worst = 0;
+      want.forEach((v, i) => { worst = Math.max(worst, Math.abs(pred.futures[i] - v)); });
+      expect(worst).toBeLessThan(1e-4);
+      expect(Math.min(...pred.margins!)).toBeGreaterThanOrEqual(1e-3);
+    });
+  }
+
+  it('K = 10 futures from a test-split history: differing label sequences, no jump, ghosts at the marks', async () => {
+    const n = entry!.params.history_frames;
+    const history = clipHistory('walker_turn_right0', 2, n);
+    const pred = await predictor().predict(history, { k: 10, seed: 3, controls: { temperature: 0.3, refine: true } });
+    expect(pred.k).toBe(10);
+    expect(pred.frames).toBe(150);
+    expect(new Set(pred.samples.map((s) => s.labels!.join(','))).size).toBeGreaterThan(1);
+    const s = J * 3;
+    const last = history.positions.subarray((n - 1) * s, n * s);
+    for (let q = 0; q < 10; q++) {
+      let step = 0;
+      for (let i = 0; i < s; i += 3) {
+        const d = Math.hypot(pred.futures[q * 150 * s + i] - last[i], pred.futures[q * 150 * s + i + 1] - last[i + 1],
+          pred.futures[q * 150 * s + i + 2] - last[i + 2]);
+        step = Math.max(step, d);
+      }
+      expect(step).toBeLessThan(0.15); // the first future frame is one interpolation step from the present
+      const sample = pred.samples[q];
+      expect(sample.marks!.length).toBe(sample.labels!.length);
+      expect(pred.ghosts!.frames[q]).toEqual(sample.marks);
+      expect(pred.ghosts!.poses[q].length).toBe(sample.marks!.length * s);
+    }
+  });
+
+  it('the same seed gives the same futures; another seed other ones', async () => {
+    const history = clipHistory('walker_walk_forward', 0, entry!.params.history_frames);
+    const p = predictor();
+    const a = await p.predict(history, { k: 4, seed: 11, horizonFrames: 60, controls: { refine: false } });
+    const b = await p.predict(history, { k: 4, seed: 11, horizonFrames: 60, controls: { refine: false } });
+    const c = await p.predict(history, { k: 4, seed: 12, horizonFrames: 60, controls: { refine: false, temperature: 1.5 } });
+    expect(Array.from(b.futures)).toEqual(Array.from(a.futures));
+    expect(c.samples.map((x) => x.labels)).not.toEqual(a.samples.map((x) => x.labels));
+  });
+
+  it.each([
+    [{ temperature: 0 }, /Temperature must be between 0.05 and 1.5, got 0/],
+    [{ temperature: -1 }, /Temperature must be between/],
+    [{ refine: 1 }, /Refine must be true or false/],
+  ])('bad control %o', async (controls, message) => {
+    const history = clipHistory('walker_walk_forward', 0, entry!.params.history_frames);
+    const run = predictor().predict(history, { k: 2, seed: 0, controls: controls as Record<string, number | boolean> });
+    await expect(run).rejects.toThrow(PredictError);
+    await expect(predictor().predict(history, { k: 2, seed: 0, controls: controls as Record<string, number | boolean> })).rejects.toThrow(message);
+  });
+
+  it('a history without enough keyposes is rejected with the count and the threshold', async () => {
+    const n = entry!.params.history_frames;
+    const still = clipHistory('walker_walk_forward', 0, 1);
+    const positions = new Float32Array(n * J * 3);
+    for (let f = 0; f < n; f++) positions.set(still.positions, f * J * 3);
+    const run = predictor().predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 });
+    await expect(run).rejects.toThrow(PredictError);
+    await expect(predictor().predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 }))
+      .rejects.toThrow(/the history yields 2 keyposes at the 0.3 m threshold; Keyposes needs at least 3/);
+  });
+
+  it('a missing centres file names the file', async () => {
+    const history = clipHistory('walker_walk_forward', 0, entry!.params.history_frames);
+    const missing = async (file: string) => { throw new Error(`models/${file} could not be loaded (HTTP 404)`); };
+    await expect(predictor(missing).predict(history, { k: 2, seed: 0 })).rejects.toThrow(/keyposes\.centres\.json could not be loaded/);
+  });
+});

@@ -1,0 +1,142 @@
+// Predictor for LCP-VAE and its Table 4 baselines, twin of export/sample/lcp_vae.py: the condition
+// graph, then z for K samples, then K futures in one decoder call. A horizon beyond future_frames
+// recurses on each sample's own last history_frames frames, re-canonicalised.
+//   full model (params.prior 'conditional'): z = mu_c + s*sigma_c*eps (Eq. 4 at inference, z = z_c);
+//     s = 0 decodes the most likely future z = mu_c (appendix E);
+//   row 2 ('standard_normal', c = h_t): z = s*eps, c = h_t;
+//   row 3 ('standard_normal', c = z_c): c = mu_c + s*sigma_c*eps_c, z = s*eps.
+// Draw order, per graph call, from one Prng(seed): for row 3 first eps_c [K, d_c], then eps [K, d];
+// otherwise eps [K, d]; row-major (sample, then latent dimension), two uniforms per normal.
+// The Gaussian sampling is written here with the shared PRNG (web/src/sampling/gaussian.ts did
+// not exist yet); arithmetic in float64 as mu + (s*sigma)*eps, rounded to float32 for the graph.
+import { Prng } from '../rng/prng';
+import { diversity } from '../sampling/diversity';
+import { fromCanonical, toCanonical } from './canonical';
+import { checkHistory, checkRequest, horizonFrames } from './request';
+import {
+  PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor,
+  type PredictorContext, type Tensor,
+} from './types';
+
+export interface LcpParams {
+  history_frames: number;
+  future_frames: number;
+  latent_size: number;
+  prior: 'conditional' | 'standard_normal';
+  decoder_condition: { name: 'h_t' | 'z_c'; size: number } | null;
+}
+
+/** Condition-graph outputs (batch 1 or k) -> z [k, d] and c [k, .] (or null), float32. */
+export function sampleLatents(
+  prng: Prng, cond: Record<string, Tensor>, k: number, scale: number, params: LcpParams,
+): { z: Float32Array; c: Float32Array | null } {
+  const d = params.latent_size;
+  const cSpec = params.decoder_condition;
+  if (params.prior === 'conditional') {
+    return { z: shiftScale(cond.mu_c.data, cond.sigma_c.data, scale, prng.normals(k * d), k, d), c: null };
+  }
+  if (params.prior !== 'standard_normal') throw new PredictError(`unknown LCP-VAE prior '${String(params.prior)}' in the manifest`);
+  let c: Float32Array | null = null;
+  if (cSpec?.name === 'z_c') {
+    c = shiftScale(cond.mu_c.data, cond.sigma_c.data, scale, prng.normals(k * cSpec.size), k, cSpec.size);
+  } else if (cSpec?.name === 'h_t') {
+    c = broadcast(cond.h_t.data, k, cSpec.size);
+  }
+  const eps = prng.normals(k * d);
+  const z = new Float32Array(k * d);
+  for (let i = 0; i < z.length; i++) z[i] = scale * eps[i];
+  return { z, c };
+}
+
+function shiftScale(mu: Float32Array, sigma: Float32Array, scale: number, eps: Float64Array, k: number, d: number): Float32Array {
+  const rows = mu.length / d; // 1 (shared history) or k
+  const out = new Float32Array(k * d);
+  for (let i = 0; i < k; i++) {
+    const r = rows === 1 ? 0 : i;
+    for (let j = 0; j < d; j++) out[i * d + j] = mu[r * d + j] + scale * sigma[r * d + j] * eps[i * d + j];
+  }
+  return out;
+}
+
+function broadcast(x: Float32Array, k: number, size: number): Float32Array {
+  if (x.length === k * size) return Float32Array.from(x);
+  const out = new Float32Array(k * size);
+  for (let i = 0; i < k; i++) out.set(x.subarray(0, size), i * size);
+  return out;
+}
+
+export class LcpVaePredictor implements Predictor {
+  constructor(private readonly ctx: PredictorContext) {}
+
+  get entry() {
+    return this.ctx.entry;
+  }
+
+  async predict(history: History, req: PredictRequest, isCancelled: () => boolean = () => false): Promise<Prediction> {
+    const { entry, skeleton, runner } = this.ctx;
+    const params = entry.params as unknown as LcpParams;
+    const j = skeleton.joints.length;
+    const n = params.history_frames;
+    const step = params.future_frames;
+    checkHistory(history, n, j);
+    checkRequest(req, entry, this.ctx.actions, this.ctx.fps);
+    const horizon = horizonFrames(req, entry, this.ctx.fps);
+    const k = req.k;
+    const spec = entry.controls.find((c) => c.id === 'sigma_scale');
+    const scale = Number(req.controls?.sigma_scale ?? spec?.default ?? 1);
+    const prng = new Prng(req.seed);
+    const stride = j * 3;
+    const histLen = n * stride;
+    const futLen = step * stride;
+    // Every sample starts from the same history: the first condition call runs once (batch 1).
+    let recent: Float32Array[] = [history.positions.slice((history.frames - n) * stride)];
+    const calls = Math.ceil(horizon / step);
+    const all = new Float32Array(k * calls * futLen);   // [k, calls * step, j, 3]
+    for (let call = 0; call < calls; call++) {
+      if (isCancelled()) throw new Superseded();
+      const rows = recent.length;
+      const canon = new Float32Array(rows * histLen);
+      const angles: number[] = [];
+      recent.forEach((h, r) => {
+        const { canonical, angle } = toCanonical(h, n, skeleton);
+        canon.set(canonical, r * histLen);
+        angles.push(angle);
+      });
+      const cond = await runner.run('condition', { history: { data: canon, dims: [rows, n, j, 3] } });
+      const { z, c } = sampleLatents(prng, cond, k, scale, params);
+      const lastPose = new Float32Array(k * stride);
+      for (let i = 0; i < k; i++) {
+        const r = rows === 1 ? 0 : i;
+        lastPose.set(canon.subarray(r * histLen + (n - 1) * stride, (r + 1) * histLen), i * stride);
+      }
+      const feeds: Record<string, Tensor> = {
+        z: { data: z, dims: [k, params.latent_size] },
+        last_pose: { data: lastPose, dims: [k, j, 3] },
+      };
+      if (params.decoder_condition && c) feeds.c = { data: c, dims: [k, params.decoder_condition.size] };
+      if (isCancelled()) throw new Superseded();
+      const res = await runner.run('decoder', feeds);
+      const next: Float32Array[] = [];
+      for (let i = 0; i < k; i++) {
+        const future = fromCanonical(res.future.data.slice(i * futLen, (i + 1) * futLen), angles[rows === 1 ? 0 : i]);
+        all.set(future, (i * calls + call) * futLen);
+        const joined = new Float32Array(histLen + futLen);
+        joined.set(recent[rows === 1 ? 0 : i]);
+        joined.set(future, histLen);
+        next.push(joined.slice(joined.length - histLen));
+      }
+      recent = next;
+    }
+    const futures = new Float32Array(k * horizon * stride);
+    for (let i = 0; i < k; i++) {
+      futures.set(all.subarray(i * calls * futLen, i * calls * futLen + horizon * stride), i * horizon * stride);
+    }
+    return {
+      k, frames: horizon, joints: j, futures,
+      lengths: Int32Array.from({ length: k }, () => horizon),
+      samples: Array.from({ length: k }, () => ({ length: horizon, stopped: false, segments: [{ start: 0, length: horizon }] })),
+      notes: scale === 0 && k > 1 ? ['sigma scale 0: every sample is the most likely future'] : [],
+      readouts: [{ label: 'diversity', value: diversity(futures, k, horizon, stride), unit: 'm' }],
+    };
+  }
+}
