@@ -15,7 +15,8 @@ function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string,
   return node;
 }
 
-export function curvePlot(curve: Curve, selected: number | null, width = 300, height = 140): SVGSVGElement {
+/** `marks[i]`: frames where sample i's next action starts (WAT's transitions), drawn as dots on its curve. */
+export function curvePlot(curve: Curve, selected: number | null, width = 300, height = 140, marks: (number[] | undefined)[] = []): SVGSVGElement {
   const pad = { l: 34, r: 6, t: 8, b: 18 };
   const frames = Math.max(2, ...curve.series.map((s) => s.length));
   const all = curve.series.flatMap((s) => Array.from(s)).concat((curve.levels ?? []).map((l) => l.value)).filter((v) => Number.isFinite(v));
@@ -33,6 +34,11 @@ export function curvePlot(curve: Curve, selected: number | null, width = 300, he
     const path = svg('path', { d, fill: 'none', stroke: sampleColour(i), 'stroke-width': selected === i ? 2.4 : 1.1,
       opacity: selected === null || selected === i ? 0.95 : 0.35 });
     root.append(path);
+    for (const f of marks[i] ?? []) {
+      if (f < 0 || f >= s.length) continue;
+      root.append(svg('circle', { cx: x(f).toFixed(1), cy: y(s[f]).toFixed(1), r: selected === i ? 3 : 2, fill: sampleColour(i),
+        class: 'plot-transition', opacity: selected === null || selected === i ? 0.95 : 0.35 }));
+    }
   });
   for (const level of curve.levels ?? []) {
     root.append(svg('line', { x1: pad.l, x2: width - pad.r, y1: y(level.value), y2: y(level.value), class: 'plot-level' }));

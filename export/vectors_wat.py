@@ -1,0 +1,85 @@
+"""WAT's shared test vectors: DCT smoothness (Eq. 4) and variance stopping (Eq. 8), Python -> vitest at 1e-6."""
+from __future__ import annotations
+
+import numpy as np
+
+from .ops.dct import dct_basis
+from .ops.dct_smoothness import smoothness
+from .ops.variance_stop import first_stop, variance_curve
+
+
+def _clip(name: str) -> np.ndarray:
+    from .data.clip_json import read_clip
+    from .paths import CLIPS_DIR
+    return read_clip(CLIPS_DIR / f"{name}.json").positions.astype(np.float64).round(6)
+
+
+def dct_smoothness_vector() -> dict:
+    rng = np.random.default_rng(5)
+    walk, backflip, punch = _clip("walk"), _clip("backflip"), _clip("punch")
+    cases = [
+        ("walk, real motion", walk[0:10], walk[10:20], 5),
+        ("backflip, real motion", backflip[20:30], backflip[30:40], 5),
+        ("hard cut walk -> punch", walk[0:10], punch[30:40], 5),
+        ("held pose", walk[5:6].repeat(10, 0), walk[5:6].repeat(10, 0), 5),
+        ("noise, L = 4, M = 3", rng.normal(size=(4, 18, 3)).round(6), rng.normal(size=(4, 18, 3)).round(6), 3),
+    ]
+    return {"about": "Eq. 4 over the last L history and first L predicted poses with the first M orthonormal "
+                     "DCT-II bases (square metres); also the basis itself. Tolerance 1e-6.",
+            "basis": {"frames": 20, "bases": 5, "d": dct_basis(20, 5).tolist()},
+            "cases": [{"name": name, "l": len(tail), "m": m, "tail": tail.tolist(), "head": head.tolist(),
+                       # rounded to 1e-12: the last bits depend on the BLAS kernel, the check is 1e-6
+                       "smoothness": round(smoothness(tail, head, m), 12)} for name, tail, head, m in cases]}
+
+
+def variance_stop_vector() -> dict:
+    walk, kick = _clip("walk"), _clip("kick")
+    held = np.concatenate([walk[:30], walk[29:30].repeat(20, 0)])           # moves 30 frames, then holds
+    settles = np.concatenate([kick[:40], kick[39:40].repeat(10, 0)])
+    cases = [
+        ("walk then hold", held, 5, 0.01, 10),
+        ("walk then hold, T_min after the hold starts", held, 5, 0.01, 35),
+        ("never stops (threshold too low)", walk[:38], 5, 1e-4, 10),
+        ("stops at T_min (threshold high)", walk[:38], 5, 10.0, 10),
+        ("kick settling, Q = 3", settles, 3, 0.02, 8),
+    ]
+    out = []
+    for name, frames, q, delta, t_min in cases:
+        curve = variance_curve(frames, q)
+        stop = first_stop(curve, delta, t_min, len(frames))
+        out.append({"name": name, "q": q, "delta": delta, "min_frames": t_min, "max_frames": len(frames),
+                    "frames": frames.tolist(), "curve": curve.round(12).tolist(), "length": stop.length,
+                    "stopped": stop.stopped, "margin": round(stop.margin, 12)})
+    return {"about": "Eq. 8 curve (tolerance 1e-6) and the stop rule: length and stopped exactly, margin to 1e-6.",
+            "cases": out}
+
+
+# (clip, first history frame, action sequence): a walker test history into three actions, and a
+# test-tail history of spin into one.
+E2E_CASES = [("walker_walk_forward", 3, ["walk", "punch", "jump"]), ("spin", 90, ["spin"])]
+
+
+def wat_e2e_cases(entry: dict, predictor, margin: float, sequences=None) -> list[dict]:
+    """End-to-end cases for a served WAT model: K = 4 samples whose every stop test keeps at least
+    `margin` to delta (the first such seed from 7 on), with their segments for the TypeScript check."""
+    from .data.clip_json import read_clip
+    from .paths import CLIPS_DIR
+    from .sample.request import Request
+    n = entry["params"]["history_frames"]
+    cases = []
+    for clip, start, actions in sequences or E2E_CASES:
+        history = read_clip(CLIPS_DIR / f"{clip}.json").positions[start:start + n].astype(np.float32)
+        for seed in range(7, 400):
+            req = Request(k=4, seed=seed, actions=list(actions))
+            pred = predictor.predict(history, req)
+            if min(pred.margins) >= margin:
+                break
+        else:
+            raise ValueError(f"no seed in 7..399 gives {clip}@{start} stop margins of at least {margin}")
+        cases.append({"model": entry["id"], "model_hash": entry["hash"], "clip": clip, "start": start,
+                      "history": history.tolist(), "request": req.to_json(), "lengths": pred.lengths.tolist(),
+                      "segments": [[{k: sg[k] for k in ("start", "length", "action", "stopped")} for sg in s["segments"]]
+                                   for s in pred.samples],
+                      "min_margin": min(pred.margins),
+                      "futures": np.round(pred.futures.astype(np.float64), 6).tolist()})
+    return cases

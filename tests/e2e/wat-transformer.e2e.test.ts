@@ -1,0 +1,80 @@
+// WAT (Transformer) in a real Chromium: the same WAT predictor and UI as the RNN, another manifest
+// entry. Select it, compose a 3-action sequence, predict K = 10 futures from a test-split history,
+// and check the per-sample segments, stop lengths and variance curves it returns.
+import { readFileSync } from 'node:fs';
+import { writeFile } from 'node:fs/promises';
+import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
+import type { Page } from 'playwright-core';
+import type { Manifest } from '../../web/src/contract/types';
+import type { WatParams } from '../../web/src/predictor/wat';
+import { openBrowser, type BrowserSession } from './browser';
+import { pixelStats } from './pixels';
+
+const baseUrl = inject('baseUrl');
+const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
+const manifest: Manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
+const entry = manifest.models.find((m) => m.id === 'wat-transformer');
+if (!entry) throw new Error('public/models/manifest.json serves no wat-transformer model: run `python -m export models --only wat-transformer`');
+const params = entry.params as unknown as WatParams;
+const SEQUENCE = ['walk', 'punch', 'jump'];
+
+const predicted = (page: Page) =>
+  page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 120_000 });
+const settle = (page: Page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+describe('WAT (Transformer) in the browser', () => {
+  let session: BrowserSession;
+  let page: Page;
+
+  beforeAll(async () => {
+    session = await openBrowser({ viewport: { width: 1400, height: 1000 } });
+    page = session.page;
+    await page.goto(baseUrl);
+    await page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]', { state: 'attached', timeout: 60_000 });
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it('is a model of its own that predicts walk -> punch -> jump with per-sample stops', async () => {
+    expect(entry.method).toBe('wat_transformer');
+    await page.locator('#model-select').selectOption('wat-transformer');
+    expect(await page.locator('.history-note').textContent()).toMatch(/test part/);
+    await page.locator('#control-k').fill('10');
+    await page.locator('.control-actions button', { hasText: 'Clear' }).click();
+    for (const a of SEQUENCE) {
+      await page.locator('#control-actions-pick').selectOption(a);
+      await page.locator('.control-actions .add-action').click();
+    }
+    expect(await page.locator('.action-chip').allTextContents()).toEqual(['1. walk×', '2. punch×', '3. jump×']);
+    await page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
+    await page.locator('#predict').click();
+    await predicted(page);
+
+    const d = await page.evaluate(() => ({ ...document.body.dataset }));
+    expect(d.predictionModel).toBe('wat-transformer');
+    expect(d.predictionK).toBe('10');
+    const lengths = d.predictionLengths!.split(',').map(Number);
+    const { min_frames: tMin } = params.stop;
+    expect(lengths).toHaveLength(10);
+    expect(lengths.every((l) => l >= 3 * tMin && l <= 3 * params.future_frames)).toBe(true);
+
+    const samples = await page.evaluate(() => window.motionFutures!.predictor.last!.prediction.samples);
+    for (const [i, s] of samples.entries()) {
+      expect(s.segments.map((g) => g.action)).toEqual(SEQUENCE);
+      expect(s.segments.reduce((c, g) => c + g.length, 0)).toBe(lengths[i]);
+      for (const g of s.segments) {
+        expect(g.length).toBeGreaterThanOrEqual(tMin);
+        expect(g.stopped).toBe(g.length < params.future_frames);
+        expect(g.flagged).toBe(g.smoothness! > params.smoothness.flag_threshold);
+      }
+    }
+    expect(await page.locator('.sample-item').count()).toBe(10);
+    expect(await page.locator('figure.curve svg.curve-plot path').count()).toBe(10);
+
+    await page.evaluate(() => { const p = window.motionFutures!.player; p.pause(); p.seek(40); });
+    await settle(page);
+    await writeFile('/tmp/wat-tf.png', await session.screenshot('wat-transformer.png'));
+    const stats = await pixelStats(session.context, await session.screenshot('wat-transformer-stage.png', page.locator('#viewer')));
+    expect(stats.foreground).toBeGreaterThan(0.02 * stats.width * stats.height);   // figures on stage
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+});

@@ -1,0 +1,128 @@
+// WAT (RNN) in a real Chromium: compose a 3-action sequence, predict K = 10 futures from a history of
+// the test split, and read each sample's length, its segments' smoothness (flagged above the
+// manifest's threshold) and the variance curves with delta and T_min marked; bad input is named.
+import { readFileSync } from 'node:fs';
+import { writeFile } from 'node:fs/promises';
+import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
+import type { Page } from 'playwright-core';
+import type { Manifest } from '../../web/src/contract/types';
+import type { WatParams } from '../../web/src/predictor/wat';
+import { openBrowser, type BrowserSession } from './browser';
+import { pixelStats } from './pixels';
+
+const baseUrl = inject('baseUrl');
+const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
+const manifest: Manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
+const entry = manifest.models.find((m) => m.id === 'wat-rnn');
+if (!entry) throw new Error('public/models/manifest.json serves no wat-rnn model: run `python -m export models --only wat-rnn`');
+const params = entry.params as unknown as WatParams;
+const SEQUENCE = ['walk', 'punch', 'jump'];
+
+const predicted = (page: Page) =>
+  page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 120_000 });
+const failed = (page: Page) =>
+  page.waitForSelector('body[data-predict-status="error"]', { state: 'attached', timeout: 60_000 });
+const settle = (page: Page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+const waiting = (page: Page) => page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
+
+async function compose(page: Page, actions: string[]): Promise<void> {
+  await page.locator('.control-actions button', { hasText: 'Clear' }).click();
+  for (const a of actions) {
+    await page.locator('#control-actions-pick').selectOption(a);
+    await page.locator('.control-actions .add-action').click();
+  }
+}
+
+describe('WAT (RNN) in the browser', () => {
+  let session: BrowserSession;
+  let page: Page;
+
+  beforeAll(async () => {
+    session = await openBrowser({ viewport: { width: 1400, height: 1000 } });
+    page = session.page;
+    await page.goto(baseUrl);
+    await page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]', { state: 'attached', timeout: 60_000 });
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it('predicts K = 10 futures for walk -> punch -> jump from a test-split history', async () => {
+    await page.locator('#model-select').selectOption('wat-rnn');
+    // the default history is on the walker's test part
+    expect(await page.locator('.history-note').textContent()).toMatch(/test part/);
+    await page.locator('#control-k').fill('10');
+    await compose(page, SEQUENCE);
+    expect(await page.locator('.action-chip').allTextContents()).toEqual(['1. walk×', '2. punch×', '3. jump×']);
+    await waiting(page);
+    await page.locator('#predict').click();
+    await predicted(page);
+
+    const d = await page.evaluate(() => ({ ...document.body.dataset }));
+    expect(d.predictionModel).toBe('wat-rnn');
+    expect(d.predictionK).toBe('10');
+    const lengths = d.predictionLengths!.split(',').map(Number);
+    expect(lengths).toHaveLength(10);
+    const { min_frames: tMin, delta } = params.stop;
+    const tMax = params.future_frames;
+    expect(lengths.every((l) => l >= 3 * tMin && l <= 3 * tMax)).toBe(true);
+
+    // what the worker returned: three segments per sample, in order, their lengths adding up
+    const samples = await page.evaluate(() => window.motionFutures!.predictor.last!.prediction.samples);
+    for (const [i, s] of samples.entries()) {
+      expect(s.segments.map((g) => g.action)).toEqual(SEQUENCE);
+      expect(s.segments.reduce((c, g) => c + g.length, 0)).toBe(lengths[i]);
+      for (const g of s.segments) expect(g.flagged).toBe(g.smoothness! > params.smoothness.flag_threshold);
+    }
+
+    // the read-out: one row per sample, each with its three segments' length and smoothness
+    expect(await page.locator('.sample-item').count()).toBe(10);
+    const rows = await page.locator('.sample-item').first().locator('.segment-list li').allTextContents();
+    expect(rows).toHaveLength(3);
+    rows.forEach((r, j) => expect(r).toMatch(new RegExp(`^${SEQUENCE[j]} · [0-9.]+ s · smoothness [0-9.]+e[-+][0-9]+ m²`)));
+    const flaggedRows = samples.reduce((c, s) => c + s.segments.filter((g) => g.flagged).length, 0);
+    expect(await page.locator('.segment-flagged').count()).toBe(flaggedRows);
+
+    // the variance plot: one curve per sample, delta and T_min marked
+    const plot = page.locator('figure.curve svg.curve-plot');
+    expect(await plot.locator('path').count()).toBe(10);
+    expect(await plot.locator('.plot-label').allTextContents()).toEqual(expect.arrayContaining(['delta', 'T_min']));
+    expect(await plot.locator('.plot-level').count()).toBe(1);
+    expect(await plot.locator('.plot-mark').count()).toBeGreaterThanOrEqual(1);
+    expect(await plot.locator('circle.plot-transition').count()).toBe(10 * (SEQUENCE.length - 1));   // each sample's 2 transitions
+    expect(await page.locator('figure.curve figcaption').textContent()).toMatch(/Eq\. 8/);
+    expect(delta).toBeGreaterThan(0);
+
+    await page.evaluate(() => { const p = window.motionFutures!.player; p.pause(); p.seek(40); });
+    await settle(page);
+    const png = await session.screenshot('wat-rnn.png');
+    await writeFile('/tmp/wat-e2e.png', png);
+    // the read-out and the plot (below the fold of the page)
+    await writeFile('/tmp/wat-e2e-panel.png', await session.screenshot('wat-rnn-futures.png', page.locator('[data-section="prediction"]')));
+    const stats = await pixelStats(session.context, await session.screenshot('wat-rnn-stage.png', page.locator('#viewer')));
+    expect(stats.foreground).toBeGreaterThan(0.02 * stats.width * stats.height);   // figures on stage
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('an empty action sequence is named, not predicted', async () => {
+    await page.locator('.control-actions button', { hasText: 'Clear' }).click();
+    await waiting(page);
+    await page.locator('#predict').click();
+    await failed(page);
+    expect(await page.locator('.predict-status').textContent()).toMatch(/the action sequence is empty/);
+    session.resetProblems();
+  });
+
+  it('K outside 1-50 is named, not predicted', async () => {
+    await compose(page, ['walk']);
+    await page.locator('#control-k').fill('60');
+    await waiting(page);
+    await page.locator('#predict').click();
+    await failed(page);
+    expect(await page.locator('.predict-status').textContent()).toMatch(/K must be an integer from 1 to 50, got 60/);
+    // and a valid K predicts again
+    await page.locator('#control-k').fill('3');
+    await waiting(page);
+    await page.locator('#predict').click();
+    await predicted(page);
+    expect(await page.evaluate(() => document.body.dataset.predictionK)).toBe('3');
+  });
+});
