@@ -1,6 +1,9 @@
-// Bootstrap: styles, then the app; if even that fails, say so on the page rather than leave it blank.
+// The main page: the header's styles, then the full widget (<motion-futures page> in index.html),
+// the same code path as every embed.
 import './styles.css';
-import { startApp, type App } from './ui/app';
+import type { MotionFuturesElement } from './embed/element';
+import './embed/element';
+import type { App } from './ui/app';
 
 declare global {
   interface Window {
@@ -9,14 +12,4 @@ declare global {
   }
 }
 
-try {
-  window.motionFutures = startApp();
-} catch (err) {
-  const box = document.getElementById('messages') ?? document.body;
-  const p = document.createElement('p');
-  p.className = 'message message-error';
-  p.setAttribute('role', 'alert');
-  p.textContent = `The page failed to start: ${(err as Error)?.message ?? String(err)}`;
-  box.append(p);
-  console.error(err);
-}
+window.motionFutures = document.querySelector<MotionFuturesElement>('motion-futures[page]')?.app ?? undefined;

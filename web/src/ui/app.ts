@@ -1,11 +1,26 @@
-// The clip browser page: wires viewer, player, panels and keyboard together.
+// One motion-futures instance: wires viewer, player, panels, keyboard and sharing into the parts
+// a widget gives it (web/src/embed/widget.ts). The main page, embed.html and every
+// <motion-futures> on a project page run this same code.
+import type { Manifest } from '../contract/types';
+import { sharedClient, sharedManifest, newViewId } from '../embed/shared';
+import { EMBED_SCRIPT } from '../embed/site';
 import type { Motion } from '../motion/clip';
+import { MAX_SEED } from '../rng/prng';
+import { embedSnippet, iframeSnippet, permalink } from '../share/links';
+import { mountSharePanel, type Shareable } from '../share/share-panel';
+import {
+  decodeState, encodeSearch, shortHash, unlinkableReason, UrlStateError, type HistorySource, type LinkState,
+  type Problem, type ShareState,
+} from '../share/url-state';
+import { SITE_VERSION } from '../share/version';
+import { olderRelease } from '../share/versions';
 import type { LayoutMode } from '../viewer/layout';
 import { mountViewer } from '../viewer/mount';
 import type { Track } from '../viewer/tracks';
 import type { SkeletonView } from '../viewer/viewer';
 import { ClipBrowser } from './clip-browser';
 import { mountClipInfo } from './clip-info';
+import { el, type StatusSink } from './dom';
 import { bindKeyboard } from './keyboard';
 import type { KeyAction } from './keys';
 import { catchUncaught, MessageBanner } from './messages';
@@ -14,8 +29,48 @@ import { mountPlaybackBar } from './playback-bar';
 import { Player } from './player';
 import { PredictController } from './predict-controller';
 import { mountViewPanel } from './view-panel';
+import { shownFromPrediction } from '../export/shown';
+import { mountExportPanel } from './export-panel';
+import { mountImportPanel } from './import-panel';
+import { mountCapturePanel } from './capture';
+import { mountViewSummary } from './view-summary';
+
+/** How an instance looks and starts, apart from the prediction state. */
+export interface ViewOptions {
+  /** 'full': side panel with every input and Share; 'minimal': stage, playback and one bar. */
+  controls: 'full' | 'minimal';
+  /** Play the clip and the futures as soon as they are in. */
+  autoplay: boolean;
+  /** Predict once the clip and the manifest are in. */
+  autoPredict: boolean;
+  /** The instance is the whole page: reads and keeps the page URL, takes unfocused keys, catches uncaught errors. */
+  page: boolean;
+}
+
+/** The DOM an instance draws into (inside its widget's shadow root). */
+export interface AppParts {
+  /** The instance root: keys bind here, focus lands here. */
+  host: HTMLElement;
+  messages: HTMLElement;
+  viewer: HTMLElement;
+  playback: HTMLElement;
+  panel: HTMLElement;
+  /** The one-line bar of the minimal controls. */
+  bar: HTMLElement;
+}
+
+export interface AppOptions {
+  siteRoot: string;
+  view: ViewOptions;
+  /** What the link or the element's attributes ask for (name/value pairs, see share/url-state.ts). */
+  link: [string, string][];
+  status: StatusSink;
+  /** Called with the state's URL query whenever it changes (null when it cannot be linked). */
+  onLink?(search: string | null): void;
+}
 
 export interface App {
+  host: HTMLElement;
   view: SkeletonView;
   player: Player;
   /** The side panel; later features add sections with addSection(panel, ...). */
@@ -23,48 +78,41 @@ export interface App {
   banner: MessageBanner;
   clips: ClipBrowser;
   predictor: PredictController;
+  /** Settles once the first clip, the manifest and the first prediction (unless predict=0) are done. */
+  ready: Promise<void>;
+  /** The motion the history is taken from, and where it came from. */
+  onStage(): { motion: Motion | null; source: HistorySource };
+  /** The state a link would carry now, or null with the reason it cannot be linked. */
+  shareState(): { state: ShareState } | { unlinkable: string };
+  /**
+   * Put a motion on stage as the history source. The file-drop feature calls
+   * showMotion(m, { kind: 'dropped', name }) for a dropped file: the Share buttons then say such
+   * a history cannot be linked. Picking a clip in the list makes the source a clip again.
+   */
+  showMotion(m: Motion | null, source: HistorySource): void;
 }
 
 /** The history clip shown first: a test clip, so the first futures come from unseen motion. */
 export const DEFAULT_CLIP = 'walker_walk_forward';
 
-function byId(id: string): HTMLElement {
-  const node = document.getElementById(id);
-  if (!node) throw new Error(`index.html lacks #${id}`);
-  return node;
-}
-
-/** The site root ('./' build base resolved against the page), ending in '/'. */
-export function siteBase(): string {
-  return new URL(import.meta.env.BASE_URL, document.baseURI).href;
-}
-
 export function clipTrack(m: Motion): Track {
   return { id: `clip:${m.name}`, role: 'clip', positions: m.positions, frames: m.frames, joints: m.joints, startFrame: 0, label: m.name };
 }
 
-/** Start-up choices from the page URL: ?clip=NAME&model=ID&start=F&predict=0 (no automatic first prediction). */
-export function urlOptions(search = location.search): { clip?: string; model?: string; start?: number; autoPredict: boolean } {
-  const q = new URLSearchParams(search);
-  const start = q.get('start');
-  return {
-    clip: q.get('clip') ?? undefined,
-    model: q.get('model') ?? undefined,
-    start: start !== null && /^\d+$/.test(start) ? Number(start) : undefined,
-    autoPredict: q.get('predict') !== '0',
-  };
+function showProblems(banner: MessageBanner, problems: Problem[]): void {
+  problems.forEach((p, i) => banner.show(p.text, p.level, `link-${i}`));
 }
 
-export function startApp(): App {
-  const options = urlOptions();
-  const banner = new MessageBanner(byId('messages'));
-  catchUncaught(banner);
-  const { view } = mountViewer(byId('viewer'));
+export function startApp(parts: AppParts, o: AppOptions): App {
+  const { view: options, siteRoot } = o;
+  const banner = new MessageBanner(parts.messages);
+  if (options.page) catchUncaught(banner);
+  const { view } = mountViewer(parts.viewer);
   const player = new Player(30);
-  mountPlaybackBar(byId('playback'), player);
+  mountPlaybackBar(parts.playback, player);
   player.subscribe((s) => view.setFrame(s.position));
 
-  const panel = byId('panel');
+  const panel = parts.panel;
   panel.replaceChildren();
   const info = mountClipInfo(addSection(panel, 'clip', 'Clip').body);
   const list = addSection(panel, 'clips', 'Clips').body;
@@ -72,8 +120,124 @@ export function startApp(): App {
   const viewPanel = mountViewPanel(addSection(panel, 'view', 'View').body, view.layout, {
     onLayout: setLayout, onResetView: () => view.resetView(),
   });
+  const share = mountSharePanel(addSection(panel, 'share', 'Share').body);
 
-  bindKeyboard(window, (action: KeyAction) => {
+  let motion: Motion | null = null;
+  let source: HistorySource = { kind: 'clip' };
+  // Until the link's own state is applied, changes are start-up noise, not the user's state.
+  let linking = false;
+  const linkParams = new Map(o.link);
+
+  const bar = mountMinimalBar(parts.bar, {
+    onNewFutures() {
+      predictor.setInputs({ seed: Math.floor(Math.random() * MAX_SEED) });
+      void predictor.predict();
+    },
+  });
+
+  const predictor = new PredictController({
+    baseUrl: siteRoot, panel, view, player, banner, before: 'clip', currentClip: () => motion,
+    manifest: () => sharedManifest(siteRoot), client: (m) => sharedClient(siteRoot, m), viewId: newViewId(),
+    status: o.status, onChange: () => refreshShare(),
+    onShown: () => { shown = predictor.last; refreshShare(); exporter.refresh(); summarise(); },
+    onSelect: () => { exporter.refresh(); summarise(); },
+  });
+
+  // The 3D view in words (model, actions, K, lengths), below the stage and describing the canvas.
+  const stageArea = parts.viewer.parentElement ?? parts.host;
+  const updateSummary = mountViewSummary(stageArea, () => parts.viewer.querySelector('canvas'));
+  let shown: PredictController['last'] = null; // the prediction on stage (a new clip clears it)
+  function summarise(): void {
+    const entry = shown && predictor.manifest?.models.find((e) => e.id === shown!.model);
+    updateSummary({
+      clip: motion?.name ?? null, clipFrames: motion?.frames, fps: motion?.fps ?? player.state.fps, selected: predictor.selected,
+      prediction: shown && entry ? { model: entry.label, start: shown.start, historyFrames: entry.params.history_frames, p: shown.prediction } : null,
+    });
+  }
+  // Capture for slides: the view as a PNG, the futures as a WebM (keys S and R).
+  const capture = mountCapturePanel(addSection(panel, 'capture', 'Capture for slides', 'share').body, {
+    canvas: () => parts.viewer.querySelector('canvas'),
+    info: () => {
+      const entry = shown && predictor.manifest?.models.find((e) => e.id === shown!.model);
+      return {
+        model: entry?.label, clip: motion?.name, start: shown?.start, historyFrames: entry?.params.history_frames,
+        k: shown?.prediction.k, seed: shown ? predictor.inputsNow()?.seed : undefined, selected: predictor.selected,
+      };
+    },
+    player, render: () => view.setFrame(player.state.position), status: o.status,
+  });
+
+  const showMotion = (m: Motion | null, from: HistorySource) => {
+    motion = m;
+    source = from;
+    shown = null;
+    predictor.clipChanged(m);
+    if (!m) { view.clear(); player.load(0); refreshShare(); return; }
+    view.setTracks([clipTrack(m)], m.skeleton);
+    player.load(m.frames, m.fps);
+    if (options.autoplay || linking) player.play(); // a clip the user picked plays
+    refreshShare();
+    summarise();
+  };
+
+  const clips = new ClipBrowser({
+    baseUrl: siteRoot, list, info, banner, defaultClip: linkParams.get('clip') || DEFAULT_CLIP, status: o.status,
+    onMotion(m) { showMotion(m, { kind: 'clip' }); },
+  });
+
+  // Bring your own motion: a dropped BVH becomes the history; what is shown can be saved.
+  mountImportPanel(addSection(panel, 'import', 'Your motion', 'view').body, {
+    skeleton: () => clips.index?.skeleton ?? null, banner, dropTarget: parts.host, status: o.status,
+    onMotion: (m) => { info.show(m); showMotion(m, { kind: 'dropped', name: m.origin.file }); },
+  });
+  const exporter = mountExportPanel(addSection(panel, 'export', 'Export', 'view').body, {
+    banner, status: o.status,
+    shown: () => {
+      const last = predictor.last;
+      const entry = last && predictor.manifest?.models.find((e) => e.id === last.model);
+      if (!last || !entry || !motion) return null;
+      return shownFromPrediction(motion, last.start, entry.params.history_frames, last.prediction,
+        { selected: predictor.selected, model: last.model });
+    },
+  });
+
+  function shareState(): { state: ShareState } | { unlinkable: string } {
+    const inputs = predictor.inputsNow();
+    if (!predictor.manifest || !inputs) return { unlinkable: 'The models did not load, so there is no prediction to link.' };
+    if (!motion) return { unlinkable: 'No clip is on stage, so there is nothing to link.' };
+    const state: ShareState = {
+      version: SITE_VERSION, model: inputs.model.id, hash: shortHash(inputs.model.hash), clip: motion.name,
+      start: inputs.start, seed: inputs.seed, controls: inputs.controls, source,
+    };
+    const why = unlinkableReason(state);
+    return why ? { unlinkable: why } : { state };
+  }
+
+  function refreshShare(): void {
+    if (!linking) return;
+    const s = shareState();
+    const manifest = predictor.manifest as Manifest;
+    let shareable: Shareable;
+    let search: string | null = null;
+    if ('unlinkable' in s) shareable = s;
+    else {
+      try {
+        search = encodeSearch(s.state, manifest);
+        shareable = {
+          link: permalink(siteRoot, s.state, manifest),
+          snippet: embedSnippet(EMBED_SCRIPT, s.state, manifest, { controls: 'minimal', autoplay: true }),
+          iframe: iframeSnippet(siteRoot, s.state, manifest, { controls: 'minimal', autoplay: true }),
+        };
+      } catch (err) {
+        shareable = { unlinkable: `This view cannot be linked: ${(err as Error).message}` };
+      }
+    }
+    share.update(shareable);
+    bar.update(shareable, predictor.inputsNow()?.model.label ?? '', motion?.name ?? '');
+    o.onLink?.(search);
+  }
+
+  bindKeyboard(parts.host, (action: KeyAction) => {
     switch (action.kind) {
       case 'toggle': player.toggle(); break;
       case 'step': player.step(action.frames); break;
@@ -83,27 +247,73 @@ export function startApp(): App {
       case 'layout': setLayout(view.layout === 'overlay' ? 'side' : 'overlay'); break;
       case 'predict': void predictor.predict(); break;
       case 'sample': predictor.select(action.index); break;
+      case 'snapshot': void capture.png(); break;
+      case 'record': capture.toggleRecording(); break;
+    }
+  }, { unfocused: options.page });
+
+  // Both loads run at once; the first futures appear as soon as the clip and the manifest are in.
+  const startPredictor = async (): Promise<LinkState | null> => {
+    let asked: LinkState | null = null;
+    try {
+      const manifest = await sharedManifest(siteRoot);
+      const decoded = decodeState(o.link, manifest, SITE_VERSION, { reportUnknown: true });
+      asked = decoded.state;
+      showProblems(banner, decoded.problems);
+      if (options.page && decoded.state.version && decoded.state.version !== SITE_VERSION) {
+        void olderRelease(siteRoot, decoded.state.version).then((url) => {
+          if (url) banner.show(`This site keeps version ${decoded.state.version}: open the link there: ${url}${location.search}`, 'info', 'link-release');
+        });
+      }
+    } catch (err) {
+      if (err instanceof UrlStateError) banner.show(err.message, 'warning', 'link');
+      // a manifest that does not load is reported by the predictor
+    }
+    await predictor.start(asked?.model);
+    if (asked) predictor.setInputs(asked);
+    return asked;
+  };
+
+  const ready = Promise.all([startPredictor(), clips.start()]).then(async ([asked]) => {
+    predictor.clipChanged(motion);
+    const clip = linkParams.get('clip');
+    if (clip && motion && motion.name !== clip) {
+      banner.show(`This link asks for the clip '${clip}', which this site does not have; showing ${motion.name} instead.`, 'warning', 'link-clip');
+    }
+    if (asked?.start !== undefined && motion) {
+      predictor.setStart(asked.start);
+      if (predictor.historyStart() !== asked.start) {
+        banner.show(`The history cannot start at frame ${asked.start} of ${motion.name}; it starts at frame ${predictor.historyStart()}.`, 'warning', 'link-start');
+      }
+    }
+    linking = true;
+    refreshShare();
+    if (options.autoPredict && motion && predictor.manifest) {
+      await predictor.predict();
+      if (!options.autoplay && predictor.last) { player.pause(); player.seek(Math.floor(player.state.length / 2)); }
     }
   });
 
-  const predictor = new PredictController({
-    baseUrl: siteBase(), panel, view, player, banner, before: 'clip', currentClip: () => clips.current,
-  });
-  const clips = new ClipBrowser({
-    baseUrl: siteBase(), list, info, banner, defaultClip: options.clip ?? DEFAULT_CLIP,
-    onMotion(m) {
-      predictor.clipChanged(m);
-      if (!m) { view.clear(); player.load(0); return; }
-      view.setTracks([clipTrack(m)], m.skeleton);
-      player.load(m.frames, m.fps);
-      player.play();
+  return {
+    host: parts.host, view, player, panel, banner, clips, predictor, ready,
+    onStage: () => ({ motion, source }),
+    shareState,
+    showMotion,
+  };
+}
+
+/** The minimal controls' bar: what is shown, new futures, and a link to the full page. */
+function mountMinimalBar(container: HTMLElement, handlers: { onNewFutures(): void }) {
+  const caption = el('span', { class: 'mini-caption muted' });
+  const again = el('button', { type: 'button', class: 'text-button', title: 'Predict again with a new seed (P predicts with the same one)' }, 'New futures');
+  const open = el('a', { class: 'mini-open', target: '_blank', rel: 'noopener', hidden: true }, 'Open in motion-futures ↗');
+  again.addEventListener('click', () => handlers.onNewFutures());
+  container.replaceChildren(caption, again, open);
+  return {
+    update(s: Shareable, model: string, clip: string) {
+      caption.textContent = [model, clip].filter(Boolean).join(' · ');
+      open.hidden = 'unlinkable' in s;
+      if (!('unlinkable' in s)) open.href = s.link;
     },
-  });
-  // Both loads run at once; the first futures appear as soon as the clip and the manifest are in.
-  void Promise.all([predictor.start(options.model), clips.start()]).then(() => {
-    predictor.clipChanged(clips.current);
-    if (options.start !== undefined) predictor.setStart(options.start);
-    if (options.autoPredict && clips.current && predictor.manifest) void predictor.predict();
-  });
-  return { view, player, panel, banner, clips, predictor };
+  };
 }

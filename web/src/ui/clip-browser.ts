@@ -4,6 +4,7 @@ import { fetchContract } from '../contract/validate';
 import { loadClip, type Motion } from '../motion/clip';
 import type { ClipInfo } from './clip-info';
 import { mountClipPanel, type ClipPanel } from './clip-panel';
+import type { StatusSink } from './dom';
 import type { MessageBanner } from './messages';
 
 export interface ClipBrowserOptions {
@@ -15,6 +16,8 @@ export interface ClipBrowserOptions {
   /** Called with each newly loaded clip, or null when the chosen one failed. */
   onMotion(motion: Motion | null, entry: ClipIndexEntry | null): void;
   defaultClip?: string;
+  /** Receives currentClip and clipStatus. */
+  status: StatusSink;
 }
 
 export type ClipStatus = 'loading' | 'ready' | 'error';
@@ -76,10 +79,9 @@ export class ClipBrowser {
     this.setStatus(entry.name, 'ready');
   }
 
-  /** Exposed on <body> so tests and styles can see what is on stage. */
+  /** Exposed on the instance root so tests and styles can see what is on stage. */
   private setStatus(name: string | null, status: ClipStatus): void {
-    const d = document.body.dataset;
-    if (name) d.currentClip = name; else delete d.currentClip;
-    d.clipStatus = status;
+    this.opts.status('currentClip', name ?? undefined);
+    this.opts.status('clipStatus', status);
   }
 }

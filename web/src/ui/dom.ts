@@ -15,3 +15,6 @@ export function el<K extends keyof HTMLElementTagNameMap>(
   for (const c of children) if (c !== null && c !== undefined && c !== false) node.append(c);
   return node;
 }
+
+/** Where an instance reports what it is doing (data-* attributes tests and styles can see). */
+export type StatusSink = (key: string, value: string | undefined) => void;

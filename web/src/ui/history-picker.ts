@@ -18,6 +18,7 @@ export function defaultStart(m: Motion, historyFrames: number): number {
 
 /** Which part of the split a window [a, b) lies in. */
 export function splitLabel(m: Motion, a: number, b: number): string {
+  if (m.origin?.kind === 'dropped-file') return `from your file ${m.origin.file}`;
   const inside = (ranges: [number, number][]) => ranges.some(([s, e]) => a >= s && b <= e);
   if (inside(m.test)) return 'test part';
   if (inside(m.train)) return 'training part (in-sample)';

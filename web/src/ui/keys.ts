@@ -8,7 +8,9 @@ export type KeyAction =
   | { kind: 'last' }
   | { kind: 'layout' }
   | { kind: 'predict' }
-  | { kind: 'sample'; index: number | null };
+  | { kind: 'sample'; index: number | null }
+  | { kind: 'snapshot' }
+  | { kind: 'record' };
 
 export interface KeyPress {
   key: string;
@@ -60,6 +62,8 @@ export function keyAction(e: KeyPress, target: FocusTarget | null): KeyAction | 
     case 'End': return { kind: 'last' };
     case 'l': case 'L': return { kind: 'layout' };
     case 'p': case 'P': return { kind: 'predict' };
+    case 's': case 'S': return { kind: 'snapshot' };
+    case 'r': case 'R': return { kind: 'record' };
     case '0': return { kind: 'sample', index: null };
     default:
       if (/^[1-9]$/.test(e.key)) return { kind: 'sample', index: Number(e.key) - 1 };

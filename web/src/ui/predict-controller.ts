@@ -1,12 +1,13 @@
 // Runs predictions for the page: manifest in, history window out of the current clip, futures
 // from the worker onto the stage and into the panel. Nothing here knows which method runs.
 import type { Manifest, ModelEntry } from '../contract/types';
-import { fetchContract } from '../contract/validate';
 import { window as clipWindow, type Motion } from '../motion/clip';
-import { ModelLoadError, PredictorClient } from '../predictor/client';
+import { ModelLoadError, type PredictorClient } from '../predictor/client';
 import { PredictError, Superseded, type Prediction } from '../predictor/types';
 import type { Track } from '../viewer/tracks';
 import type { SkeletonView } from '../viewer/viewer';
+import type { ControlValue } from './controls';
+import type { StatusSink } from './dom';
 import type { MessageBanner } from './messages';
 import { addSection } from './panel';
 import type { Player } from './player';
@@ -23,6 +24,27 @@ export interface PredictOptions {
   currentClip(): Motion | null;
   /** Insert the predictor sections before this panel section. */
   before?: string;
+  /** The manifest and the worker, shared by every instance on the page (web/src/embed/shared.ts). */
+  manifest(): Promise<Manifest>;
+  client(manifest: Manifest): PredictorClient;
+  /** This instance's view id: its requests supersede only its own earlier ones. */
+  viewId: string;
+  /** Receives predictStatus and, after each prediction, predictionModel/K/Lengths. */
+  status: StatusSink;
+  /** Any input changed (model, seed, controls, history start). */
+  onChange?(): void;
+  /** A prediction is on stage. */
+  onShown?(): void;
+  /** The selected sample changed (null: none). */
+  onSelect?(sample: number | null): void;
+}
+
+/** The inputs that make a request, as the share code reads and sets them. */
+export interface PredictInputs {
+  model: ModelEntry;
+  seed: number;
+  start: number;
+  controls: Record<string, ControlValue>;
 }
 
 /** The tracks a prediction shows: history, each sample up to its own length, and the truth. */
@@ -56,11 +78,11 @@ export class PredictController {
     const out = addSection(this.o.panel, 'prediction', 'Futures', this.o.before);
     body.textContent = 'Loading the models…';
     try {
-      this.manifest = await fetchContract(`${this.o.baseUrl}models/manifest.json`, 'manifest');
+      this.manifest = await this.o.manifest();
     } catch (err) {
       body.textContent = 'The models could not be loaded, so the page can show clips but not predict.';
       this.o.banner.error(err, 'manifest');
-      document.body.dataset.predictStatus = 'unavailable';
+      this.o.status('predictStatus', 'unavailable');
       return;
     }
     if (!this.manifest.models.length) {
@@ -70,11 +92,31 @@ export class PredictController {
     this.results = mountPredictionPanel(out.body, (s) => this.select(s));
     this.results.clear();
     this.inputs = mountPredictPanel(body, this.manifest, model, {
-      onModel: (entry) => { this.clipChanged(this.o.currentClip(), entry); },
+      onModel: (entry) => { this.clipChanged(this.o.currentClip(), entry); this.o.onChange?.(); },
       onPredict: () => { void this.predict(); },
-      onChange: () => {},
+      onChange: () => { this.o.onChange?.(); },
+      status: this.o.status,
     });
-    document.body.dataset.predictStatus = 'idle';
+    this.o.status('predictStatus', 'idle');
+  }
+
+  /** The current inputs, or null before the manifest is in. */
+  inputsNow(): PredictInputs | null {
+    if (!this.inputs) return null;
+    return { model: this.inputs.model(), seed: this.inputs.seed(), start: this.inputs.history.start(), controls: this.inputs.controls().values() };
+  }
+
+  /** Set inputs (a permalink's); unknown models are left to the caller to report. */
+  setInputs(s: { model?: string; seed?: number; controls?: Record<string, ControlValue> }): void {
+    if (!this.inputs) return;
+    if (s.model !== undefined) this.inputs.selectModel(s.model);
+    if (s.seed !== undefined) this.inputs.setSeed(s.seed);
+    for (const [id, v] of Object.entries(s.controls ?? {})) this.inputs.controls().set(id, v);
+  }
+
+  /** The history start frame (after clamping to the clip). */
+  historyStart(): number | null {
+    return this.inputs ? this.inputs.history.start() : null;
   }
 
   /** Keep the history picker in step with the clip on stage. */
@@ -87,9 +129,14 @@ export class PredictController {
     this.inputs?.history.setStart(frame);
   }
 
+  /** The sample picked in the list or by a digit key; null when none is. */
+  selected: number | null = null;
+
   select(sample: number | null): void {
+    this.selected = sample;
     this.o.view.setSelected(sample);
     this.results?.select(sample);
+    this.o.onSelect?.(sample);
   }
 
   async predict(): Promise<void> {
@@ -103,10 +150,10 @@ export class PredictController {
     const request = buildRequest(entry, this.inputs.controls().values(), this.inputs.seed(), this.manifest.fps);
     const history = { positions: clipWindow(m, start, n), frames: n, joints: m.joints };
     try {
-      this.client ??= new PredictorClient(this.o.baseUrl, this.manifest);
+      this.client ??= this.o.client(this.manifest);
       const loading = !this.loaded.has(entry.id);
       this.inputs.setBusy(loading ? `Loading ${entry.label}…` : 'Predicting…', loading ? 0 : undefined);
-      const { prediction, ms } = await this.client.predict('main', entry.id, history, request,
+      const { prediction, ms } = await this.client.predict(this.o.viewId, entry.id, history, request,
         (loaded, total) => this.inputs?.setBusy(`Loading ${entry.label}… ${(loaded / 1e6).toFixed(1)} MB`, total ? loaded / total : undefined));
       this.loaded.add(entry.id);
       if (this.o.currentClip() !== m) { this.inputs.setBusy(null); return; } // the user moved on to another clip
@@ -122,7 +169,7 @@ export class PredictController {
         this.inputs.setStatus(text);
         this.o.banner.show(text, 'error', 'predict');
       }
-      document.body.dataset.predictStatus = 'error';
+      this.o.status('predictStatus', 'error');
     }
   }
 
@@ -136,10 +183,10 @@ export class PredictController {
     this.results?.show(p, m.fps, ms);
     this.inputs?.setBusy(null);
     this.inputs?.setStatus(`${entry.label}: ${p.k} ${p.k === 1 ? 'future' : 'futures'} from frames ${start}–${start + n - 1} of ${m.name}.`);
-    const d = document.body.dataset;
-    d.predictStatus = 'done';
-    d.predictionModel = entry.id;
-    d.predictionK = String(p.k);
-    d.predictionLengths = Array.from(p.lengths).join(',');
+    this.o.status('predictionModel', entry.id);
+    this.o.status('predictionK', String(p.k));
+    this.o.status('predictionLengths', Array.from(p.lengths).join(','));
+    this.o.status('predictStatus', 'done');
+    this.o.onShown?.();
   }
 }

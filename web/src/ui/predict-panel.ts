@@ -2,7 +2,7 @@
 import type { Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import { mountControls, type ControlsView } from './controls';
-import { el } from './dom';
+import { el, type StatusSink } from './dom';
 import { mountHistoryPicker, type HistoryPicker } from './history-picker';
 
 export interface PredictPanel {
@@ -10,12 +10,15 @@ export interface PredictPanel {
   history: HistoryPicker;
   controls(): ControlsView;
   seed(): number;
+  /** Choose a model by id (as if picked in the list); false when there is none. */
+  selectModel(id: string): boolean;
+  setSeed(seed: number): void;
   setBusy(text: string | null, progress?: number): void;
   setStatus(text: string): void;
 }
 
 export function mountPredictPanel(container: HTMLElement, manifest: Manifest, initialModel: string | undefined, handlers: {
-  onModel(entry: ModelEntry): void; onPredict(): void; onChange(): void;
+  onModel(entry: ModelEntry): void; onPredict(): void; onChange(): void; status: StatusSink;
 }): PredictPanel {
   const models = manifest.models;
   const select = el('select', { id: 'model-select' }, ...models.map((m) => el('option', { value: m.id }, m.label)));
@@ -61,12 +64,18 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
     history,
     controls: () => controls,
     seed: () => Number(seedInput.value),
+    selectModel(id) {
+      if (!models.some((m) => m.id === id)) return false;
+      if (select.value !== id) { select.value = id; showModel(); }
+      return true;
+    },
+    setSeed(seed) { seedInput.value = String(Math.max(0, Math.min(MAX_SEED, Math.round(seed)))); },
     setBusy(text, fraction) {
       predict.disabled = text !== null && fraction !== undefined;
       progress.hidden = fraction === undefined;
       if (fraction !== undefined) progress.value = fraction;
       if (text !== null) status.textContent = text;
-      document.body.dataset.predictStatus = text === null ? 'idle' : 'busy';
+      handlers.status('predictStatus', text === null ? 'idle' : 'busy');
     },
     setStatus(text) { status.textContent = text; },
   };

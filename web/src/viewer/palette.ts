@@ -32,12 +32,17 @@ const SELECTED: Record<Side, Hsl> = {
   left: { h: 28, s: 1, l: 0.55 }, right: { h: 205, s: 1, l: 0.52 }, mid: { h: 320, s: 0.75, l: 0.55 },
 };
 
-/** Spread neighbouring samples across the family by the golden ratio. */
+/**
+ * Spread neighbouring samples across the family by the golden ratio, and step their lightness in
+ * threes: hue steps inside one family are hard to tell apart with a colour-vision deficiency,
+ * lightness steps are not (the list, the side-by-side cells and keys 1–9 number the samples too).
+ */
 function sampleHsl(side: Side, sample: number): Hsl {
   const u = (sample * 0.6180339887) % 1;
-  if (side === 'left') return { h: 12 + 42 * u, s: 0.85, l: 0.55 };
-  if (side === 'right') return { h: 188 + 62 * u, s: 0.7, l: 0.52 };
-  return { h: 270 + 60 * u, s: 0.18, l: 0.6 };
+  const dl = [0, -0.14, 0.14][sample % 3];
+  if (side === 'left') return { h: 12 + 42 * u, s: 0.85, l: 0.55 + dl };
+  if (side === 'right') return { h: 188 + 62 * u, s: 0.7, l: 0.52 + dl };
+  return { h: 270 + 60 * u, s: 0.18, l: 0.6 + dl };
 }
 
 function tintHsl(side: Side, tint: Tint): Hsl {

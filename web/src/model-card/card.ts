@@ -1,0 +1,282 @@
+// The model card's content as data: what the clips are, and what the served models can and cannot
+// do, read from the measured numbers in results.json (never typed in), so the card follows each
+// evaluation run. Pure functions, tested in Node (tests/web/explainer.test.ts).
+import type { ClipIndex, Manifest } from '../contract/types';
+import type { Results, Row, Stat, Table } from '../results/data';
+import { fmt } from '../results/format';
+
+export interface DataSummary {
+  clips: number;
+  actions: number;
+  fps: number;
+  seconds: number;
+  /** Seconds of frames in the training parts of the split, and in the test parts. */
+  trainSeconds: number;
+  testSeconds: number;
+  /** Clips that are wholly test (a second take of an action), by action. */
+  testOnly: Record<string, string[]>;
+}
+
+const span = (ranges: [number, number][]) => ranges.reduce((s, [a, b]) => s + (b - a), 0);
+
+export function dataSummary(index: ClipIndex): DataSummary {
+  if (!index.clips.length) throw new Error('clips/index.json lists no clips');
+  const frames = index.clips.reduce((s, c) => s + c.frames, 0);
+  const testOnly: Record<string, string[]> = {};
+  for (const c of index.clips) if (c.role === 'test') (testOnly[c.action] ??= []).push(c.name);
+  return {
+    clips: index.clips.length,
+    actions: new Set(index.clips.map((c) => c.action)).size,
+    fps: index.fps,
+    seconds: frames / index.fps,
+    trainSeconds: index.clips.reduce((s, c) => s + span(c.train), 0) / index.fps,
+    testSeconds: index.clips.reduce((s, c) => s + span(c.test), 0) / index.fps,
+    testOnly,
+  };
+}
+
+export type Verdict = 'can' | 'cannot' | 'unknown';
+
+export interface Finding {
+  verdict: Verdict;
+  text: string;
+  /** Where the numbers come from: "results.json, table walker_5s". */
+  source: string;
+}
+
+const val = (row: Row | undefined, metric: string): Stat | null => row?.values?.[metric] ?? null;
+const rowsOf = (t: Table) => t.rows.filter((r) => r.kind === 'model' && !r.skipped && r.values);
+const seconds = (frames: number, fps: number) => `${Number((frames / fps).toFixed(2))} s`;
+const times = (x: number) => `${x.toFixed(1)}×`;
+/** Rows of one trained model (e.g. Keyposes at several temperatures) share its hash. */
+const modelKey = (r: Row) => Object.values(r.hashes ?? {})[0] ?? r.id;
+
+function withUnit(results: Results, metric: string, v: number): string {
+  const unit = results.columns[metric]?.unit ?? '';
+  return `${fmt(v, unit)}${unit ? (unit === '%' ? ' %' : ` ${unit}`) : ''}`;
+}
+
+/** Per trained model (e.g. over all Keyposes temperatures), the row with the best value of a metric. */
+function bestPerGroup(results: Results, t: Table, metric: string): Row[] {
+  const better = results.columns[metric]?.better;
+  const best = new Map<string, Row>();
+  for (const r of rowsOf(t)) {
+    const v = val(r, metric);
+    if (!v) continue;
+    const cur = best.get(modelKey(r));
+    const cv = val(cur, metric);
+    if (!cur || !cv || (better === 'higher' ? v.mean > cv.mean : v.mean < cv.mean)) best.set(modelKey(r), r);
+  }
+  return [...best.values()];
+}
+
+/**
+ * What the models can and cannot do, each statement with its numbers:
+ * - accuracy against the zero-velocity baseline (best of K MPJPE at the table's horizon);
+ * - whether a model draws different futures at all (diversity);
+ * - how rough its motion is against the captured frames (the smoothness loss, WAT Eq. 4);
+ * - how recognisable its futures are against the ground truth (the MOAC classifier);
+ * - the paper claims results.json checks, with their status; rows not evaluated, with the reason.
+ */
+export function findings(results: Results): Finding[] {
+  const out: Finding[] = [];
+  const fps = results.fps;
+  const single = new Set<string>(); // a deterministic model is said to draw one future once, not per table
+  for (const t of results.tables) {
+    const src = `results.json, table ${t.id}`;
+    const where = `${t.title.charAt(0).toLowerCase()}${t.title.slice(1)}`;
+    const zero = t.rows.find((r) => r.id === 'zero-velocity' && r.values);
+    const oracle = t.rows.find((r) => r.kind === 'oracle' && r.values);
+    const mpjpe = t.columns.includes('mpjpe_h_best') ? 'mpjpe_h_best' : t.columns.includes('mpjpe_1s_best') ? 'mpjpe_1s_best' : null;
+    if (t.truth && zero && mpjpe) {
+      const z = val(zero, mpjpe)!;
+      for (const r of bestPerGroup(results, t, mpjpe)) {
+        if (r.id === zero.id) continue;
+        const v = val(r, mpjpe)!;
+        const lower = v.mean < z.mean;
+        out.push({ verdict: lower ? 'can' : 'cannot', source: src,
+          text: `${r.label} ${lower ? 'comes closer to' : 'comes no closer to'} the captured future than standing still: best-of-${r.k ?? t.k} MPJPE `
+            + `${mpjpe === 'mpjpe_h_best' ? `at ${seconds(t.horizon_frames, fps)}` : 'over 1 s'} ${withUnit(results, mpjpe, v.mean)} against `
+            + `${withUnit(results, mpjpe, z.mean)} for zero-velocity (${where}, ${t.windows ?? '?'} histories).` });
+      }
+    }
+    if (t.columns.includes('div')) {
+      for (const r of bestPerGroup(results, t, 'div')) {
+        const d = val(r, 'div')!;
+        if (d.mean > 0) {
+          out.push({ verdict: 'can', source: src, text: `${r.label} draws different futures for one history: diversity ${withUnit(results, 'div', d.mean)} (${where}).` });
+        } else if (!single.has(r.label)) {
+          single.add(r.label);
+          out.push({ verdict: 'cannot', source: src, text: `${r.label} draws a single future: diversity 0 (${where}).` });
+        }
+      }
+    }
+    const rough = oracle ? val(oracle, 'smooth') : null;
+    if (rough && t.columns.includes('smooth')) {
+      const byModel = new Map<string, Row[]>();
+      for (const r of rowsOf(t)) {
+        const s = val(r, 'smooth');
+        if (s && s.mean > 2 * rough.mean) byModel.set(modelKey(r), [...(byModel.get(modelKey(r)) ?? []), r]);
+      }
+      for (const rows of byModel.values()) {
+        const each = rows.map((r) => `${r.label} ${withUnit(results, 'smooth', r.values!.smooth.mean)} (${times(r.values!.smooth.mean / rough.mean)})`);
+        out.push({ verdict: 'cannot', source: src, text: `${rows.length > 1 ? `${rows[0].label.replace(/\s*\(.*\)$/, '')} at every setting` : rows[0].label} moves more `
+          + `roughly than captured motion: smoothness loss (WAT Eq. 4) ${each.join(', ')}, against ${withUnit(results, 'smooth', rough.mean)} for the captured frames (${where}).` });
+      }
+    }
+    const acc = oracle ? val(oracle, 'acc_moac') : null;
+    if (acc && acc.mean > 0) {
+      for (const r of rowsOf(t)) {
+        const a = val(r, 'acc_moac');
+        if (a && a.mean < 0.5 * acc.mean) {
+          out.push({ verdict: 'cannot', source: src, text: `${r.label}'s futures are seldom recognised as the history's action: MOAC accuracy `
+            + `${withUnit(results, 'acc_moac', a.mean)} against ${withUnit(results, 'acc_moac', acc.mean)} for the captured future (${where}).` });
+        }
+      }
+    }
+    const skipped = new Map<string, string[]>();
+    for (const r of t.rows) if (r.skipped) skipped.set(r.skipped, [...(skipped.get(r.skipped) ?? []), r.label]);
+    for (const [reason, labels] of skipped) {
+      out.push({ verdict: 'unknown', source: src, text: `${labels.join(', ')}: not measured in ${where}: ${reason}.` });
+    }
+  }
+  for (const c of results.claims) {
+    const nums = c.parts.filter((p) => p.a_value && p.b_value).map((p) => {
+      const a = rowLabel(results, p.table, p.a);
+      const b = rowLabel(results, p.table, p.b);
+      return `${a} ${withUnit(results, p.metric, p.a_value!.mean)} vs ${b} ${withUnit(results, p.metric_b, p.b_value!.mean)} (${results.columns[p.metric]?.label ?? p.metric})`;
+    });
+    const verdict: Verdict = c.status === 'holds' ? 'can' : c.status === 'fails' ? 'cannot' : 'unknown';
+    out.push({ verdict, source: `results.json, claim ${c.id}`,
+      text: `${c.paper}: “${c.text}” — ${c.status} here${nums.length ? `: ${nums.join('; ')}` : ''}.` });
+  }
+  for (const s of results.skipped) out.push({ verdict: 'unknown', source: 'results.json, skipped', text: `${s.label}: not evaluated (${s.reason}).` });
+  return out;
+}
+
+function rowLabel(results: Results, table: string, row: string): string {
+  return results.tables.find((x) => x.id === table)?.rows.find((r) => r.id === row)?.label ?? row;
+}
+
+/** Served models whose hash differs from the one results.json measured (or that it did not measure). */
+export function staleModels(results: Results, manifest: Manifest): { label: string; problem: string }[] {
+  return manifest.models.flatMap((m) => {
+    const measured = results.models[m.id];
+    if (!measured) return [{ label: m.label, problem: 'not in results.json: no measured numbers for it yet' }];
+    if (measured !== m.hash) {
+      return [{ label: m.label, problem: `results.json measured version ${measured.replace(/^sha256:/, '').slice(0, 12)}, `
+        + `the site serves ${m.hash.replace(/^sha256:/, '').slice(0, 12)}: its numbers below describe the earlier version` }];
+    }
+    return [];
+  });
+}
+
+/** The classifiers behind the recognition numbers, and where they fail on test motion. */
+export function classifierCaveats(results: Results): string[] {
+  const out: string[] = [];
+  for (const [id, c] of Object.entries(results.classifiers)) {
+    if (id.endsWith('_shuffled')) continue;
+    const zero = Object.entries(c.test_groups).filter(([, g]) => g.accuracy === 0).map(([n, g]) => `${n.replace(/_/g, ' ')} (${g.snippets} snippets)`);
+    out.push(`${id === 'moac' ? 'MOAC (motion only)' : id === 'pose_gru' ? 'Pose GRU' : id.replace(/_/g, ' ')}: test accuracy ${fmt(c.test_accuracy, '%')} %, balanced `
+      + `${fmt(c.test_balanced_accuracy, '%')} % over ${c.classes} actions (chance ${fmt(c.chance, '%')} %)`
+      + `${zero.length ? `; it recognises none of ${zero.join(', ')}` : ''}.`);
+  }
+  return out;
+}
+
+/**
+ * The failure modes seen in the measured numbers, each with them; an item whose numbers are not in
+ * results.json (a later evaluation without that table or row) is left out rather than guessed.
+ */
+export function failureModes(results: Results | null, index: ClipIndex, manifest: Manifest | null): string[] {
+  const out: string[] = [];
+  const row = (table: string, id: string) => results?.tables.find((x) => x.id === table)?.rows.find((r) => r.id === id && r.values);
+  const v = (table: string, id: string, metric: string) => val(row(table, id), metric)?.mean;
+  const u = (metric: string, x: number) => (results ? withUnit(results, metric, x) : String(x));
+  const walker = 'walker_5s';
+  const [zMoac, oMoac] = [v(walker, 'zero-velocity', 'acc_moac'), v(walker, 'oracle', 'acc_moac')];
+  if (zMoac !== undefined && oMoac !== undefined && zMoac >= oMoac) {
+    out.push(`Standing still scores well: a future that does not move is recognised as walking by the motion-only classifier as often as `
+      + `the captured future (MOAC accuracy ${u('acc_moac', zMoac)} against ${u('acc_moac', oMoac)} on the walker test clips). High recognition `
+      + 'accuracy alone does not mean lifelike motion.');
+  }
+  const [gSpeed, oSpeed, gErr, zErr] = [v(walker, 'regression-gru', 'speed'), v(walker, 'oracle', 'speed'),
+    v(walker, 'regression-gru', 'mpjpe_h_best'), v(walker, 'zero-velocity', 'mpjpe_h_best')];
+  if (gSpeed !== undefined && oSpeed !== undefined && gErr !== undefined && zErr !== undefined) {
+    out.push(`The regression GRU does not settle into a walk: 5 s ahead its pose is ${u('mpjpe_h_best', gErr)} from the captured one `
+      + `(zero-velocity: ${u('mpjpe_h_best', zErr)}) and in the last second its joints move at ${u('speed', gSpeed)}, against `
+      + `${u('speed', oSpeed)} in the captured walking.`);
+  }
+  const kp = results?.tables.find((x) => x.id === walker)?.rows.filter((r) => r.group === 'keyposes' && r.values?.smooth) ?? [];
+  const oSmooth = v(walker, 'oracle', 'smooth');
+  if (kp.length && oSmooth) {
+    const ratios = kp.map((r) => r.values!.smooth.mean / oSmooth);
+    out.push(`Keyposes moves roughly: it goes from one cluster-centre pose to the next, and its smoothness loss (WAT Eq. 4) is `
+      + `${times(Math.min(...ratios))} to ${times(Math.max(...ratios))} that of captured walking (${kp.map((r) => `${r.label} ${u('smooth', r.values!.smooth.mean)}`).join(', ')}; `
+      + `captured ${u('smooth', oSmooth)}).`);
+  }
+  const testActions = [...new Set(index.clips.filter((c) => c.test.length).map((c) => c.action.replace(/_/g, ' ')))];
+  const allActions = new Set(index.clips.map((c) => c.action)).size;
+  out.push(`Only ${testActions.length} of ${allActions} actions have test motion (${testActions.join(', ')}): no number here says how the models do `
+    + 'on the others, whose histories can only come from training clips (in-sample).');
+  if (manifest) {
+    const longest = Math.max(...manifest.models.map((m) => m.params.history_frames));
+    const short = index.clips.filter((c) => c.frames < longest && !c.loops).map((c) => c.name.replace(/_/g, ' '));
+    if (short.length) out.push(`Clips shorter than the longest history (${longest} frames) cannot give that model a history: ${short.join(', ')}.`);
+  }
+  out.push('With one performer per action, a model has seen one way to do each action; expect futures of unseen histories to drift towards '
+    + 'a training take (not measured here).');
+  out.push('Skeletons have 18 joints, without hands, foot orientation or face, and the root\'s horizontal travel is removed: figures walk on the spot.');
+  return out;
+}
+
+/** A few of each table's columns for the card (the Results page has them all). */
+export const CARD_COLUMNS = ['mpjpe_h_best', 'mpjpe_1s_best', 'ade', 'div', 'acc_moac', 'smooth', 'length'];
+
+export function cardColumns(t: Table): string[] {
+  const cols = CARD_COLUMNS.filter((c) => t.columns.includes(c));
+  // At a 1 s horizon MPJPE "horizon" and "1 s" are the same number: keep one.
+  return t.horizon_frames <= 30 ? cols.filter((c) => c !== 'mpjpe_h_best') : cols.filter((c) => c !== 'mpjpe_1s_best');
+}
+
+export const PAPERS_BIBTEX = `@inproceedings{mao2022weakly,
+  title     = {Weakly-supervised Action Transition Learning for Stochastic Human Motion Prediction},
+  author    = {Mao, Wei and Liu, Miaomiao and Salzmann, Mathieu},
+  booktitle = {Proceedings of the IEEE/CVF Conference on Computer Vision and Pattern Recognition (CVPR)},
+  year      = {2022}
+}
+
+@inproceedings{aliakbarian2021contextually,
+  title     = {Contextually Plausible and Diverse 3D Human Motion Prediction},
+  author    = {Aliakbarian, Sadegh and Saleh, Fatemeh and Petersson, Lars and Gould, Stephen and Salzmann, Mathieu},
+  booktitle = {Proceedings of the IEEE/CVF International Conference on Computer Vision (ICCV)},
+  year      = {2021}
+}
+
+@inproceedings{kiciroglu2022keyposes,
+  title     = {Long Term Motion Prediction Using Keyposes},
+  author    = {Kiciroglu, Sena and Wang, Wei and Salzmann, Mathieu and Fua, Pascal},
+  booktitle = {International Conference on 3D Vision (3DV)},
+  year      = {2022}
+}
+
+@article{peng2018deepmimic,
+  title   = {DeepMimic: Example-Guided Deep Reinforcement Learning of Physics-Based Character Skills},
+  author  = {Peng, Xue Bin and Abbeel, Pieter and Levine, Sergey and van de Panne, Michiel},
+  journal = {ACM Transactions on Graphics (Proc. SIGGRAPH)},
+  volume  = {37},
+  number  = {4},
+  year    = {2018}
+}`;
+
+/** This project's BibTeX; the version comes from the site (package.json at build time). */
+export function projectBibtex(version: string): string {
+  return `@software{motion_futures,
+  title   = {motion futures: stochastic human motion prediction in the browser},
+  author  = {{motion-futures contributors}},
+  version = {${version}},
+  year    = {2026},
+  license = {MIT},
+  note    = {WAT, LCP-VAE and Keyposes on DeepMimic motion capture, run with onnxruntime-web}
+}`;
+}

@@ -1,0 +1,261 @@
+// The whole prediction state as URL parameters (permalinks) or element attributes (embeds):
+// site version, model and its hash, clip and history start, seed, and every control the
+// manifest declares for the model. Generic over the manifest: nothing here knows a method.
+//
+// Format (one name per field; controls by their manifest id, verbatim):
+//   v=0.1.0 &model=ID &hash=<first 12 hex of the model's sha256> &clip=NAME &start=F &seed=S
+//   &<control id>=VALUE ...   int/number: decimal; bool: 1|0; actions: comma-separated names
+import type { ControlSpec, Manifest, ModelEntry } from '../contract/types';
+import { MAX_SEED } from '../rng/prng';
+import type { ControlValue } from '../ui/controls';
+
+export type { ControlValue };
+
+/** Where the history comes from. A dropped file never leaves the computer, so it has no link. */
+export type HistorySource =
+  | { kind: 'clip' }
+  | { kind: 'dropped'; name: string };
+
+/** Everything a permalink reproduces. */
+export interface ShareState {
+  /** Site version that made the link (package.json version). */
+  version: string;
+  model: string;
+  /** First HASH_CHARS hex digits of the model's manifest hash. */
+  hash: string;
+  clip: string;
+  start: number;
+  seed: number;
+  /** One value per control the model declares, keyed by control id. */
+  controls: Record<string, ControlValue>;
+  /** Default: a clip. A dropped file makes the state unlinkable. */
+  source?: HistorySource;
+}
+
+/** What a link or an embed's attributes ask for; anything absent keeps the page's default. */
+export interface LinkState {
+  version?: string;
+  model: string;
+  hash?: string;
+  clip?: string;
+  start?: number;
+  seed?: number;
+  controls: Record<string, ControlValue>;
+}
+
+export interface Problem {
+  level: 'warning' | 'info';
+  text: string;
+}
+
+export const HASH_CHARS = 12;
+/** Names of the state's own fields, and of the view options that share the same parameter space. */
+export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed'] as const;
+export const VIEW_KEYS = ['controls', 'autoplay', 'predict', 'page'] as const;
+const RESERVED = new Set<string>([...STATE_KEYS, ...VIEW_KEYS]);
+/** The action-sequence composer's length when the manifest gives no max_length (controls.ts). */
+export const DEFAULT_MAX_ACTIONS = 5;
+
+export class UrlStateError extends Error {
+  constructor(message: string) {
+    super(message);
+    this.name = 'UrlStateError';
+  }
+}
+
+/** The short hash a link carries for a manifest hash 'sha256:<hex>'. */
+export function shortHash(hash: string): string {
+  return hash.replace(/^sha256:/, '').slice(0, HASH_CHARS);
+}
+
+function checkIds(entry: ModelEntry): void {
+  for (const spec of entry.controls) {
+    if (RESERVED.has(spec.id)) {
+      throw new UrlStateError(`model ${entry.id} declares a control '${spec.id}', a name links reserve for their own fields`);
+    }
+  }
+}
+
+function onGrid(v: number, spec: ControlSpec): boolean {
+  if (!spec.step) return true;
+  const k = (v - (spec.min ?? 0)) / spec.step;
+  return Math.abs(k - Math.round(k)) <= 1e-6;
+}
+
+/** Why a control value is not valid for its spec, or null when it is. */
+export function controlProblem(spec: ControlSpec, value: ControlValue, actions: readonly string[]): string | null {
+  const name = `${spec.label} (${spec.id})`;
+  if (spec.type === 'actions') {
+    if (!Array.isArray(value)) return `${name} must be a list of actions`;
+    const max = spec.max_length ?? DEFAULT_MAX_ACTIONS;
+    if (value.length > max) return `${name} takes at most ${max} actions, got ${value.length}`;
+    const bad = value.find((a) => !actions.includes(a));
+    return bad === undefined ? null : `${name}: unknown action '${bad}'`;
+  }
+  if (spec.type === 'bool') return typeof value === 'boolean' ? null : `${name} must be 1 or 0`;
+  if (typeof value !== 'number' || !Number.isFinite(value)) return `${name} must be a number`;
+  if (spec.type === 'int' && !Number.isInteger(value)) return `${name} must be a whole number, got ${value}`;
+  if ((spec.min !== undefined && value < spec.min) || (spec.max !== undefined && value > spec.max)) {
+    return `${name} must be between ${spec.min ?? '-∞'} and ${spec.max ?? '∞'}, got ${value}`;
+  }
+  if (!onGrid(value, spec)) return `${name} must be ${spec.min ?? 0} plus a multiple of ${spec.step}, got ${value}`;
+  return null;
+}
+
+function encodeValue(spec: ControlSpec, value: ControlValue): string {
+  if (spec.type === 'actions') return (value as string[]).join(',');
+  if (spec.type === 'bool') return value ? '1' : '0';
+  return String(value); // shortest round-trip decimal of the double
+}
+
+/** Parse one control's text; throws a message naming the control when it does not parse. */
+function decodeValue(spec: ControlSpec, text: string): ControlValue {
+  const name = `${spec.label} (${spec.id})`;
+  if (spec.type === 'actions') return text.split(',').map((a) => a.trim()).filter(Boolean);
+  if (spec.type === 'bool') {
+    // '' is an attribute given without a value (<motion-futures refine>).
+    if (['1', 'true', ''].includes(text)) return true;
+    if (['0', 'false'].includes(text)) return false;
+    throw new Error(`${name} must be 1 or 0, got '${text}'`);
+  }
+  const re = spec.type === 'int' ? /^[-+]?\d+$/ : /^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/;
+  if (!re.test(text.trim())) throw new Error(`${name} must be ${spec.type === 'int' ? 'a whole number' : 'a number'}, got '${text}'`);
+  const v = Number(text);
+  return Object.is(v, -0) ? 0 : v;
+}
+
+/** Check a complete state against the model; throws UrlStateError naming the first problem. */
+export function validateState(state: ShareState, manifest: Manifest): ModelEntry {
+  const entry = manifest.models.find((m) => m.id === state.model);
+  if (!entry) throw new UrlStateError(`this site serves no model '${state.model}'`);
+  checkIds(entry);
+  if (!/^[0-9a-f]+$/.test(state.hash)) throw new UrlStateError(`the model hash must be hex digits, got '${state.hash}'`);
+  if (!state.clip) throw new UrlStateError('the clip name is empty');
+  if (!Number.isInteger(state.start) || state.start < 0) throw new UrlStateError(`the history start must be a frame number, got ${state.start}`);
+  if (!Number.isInteger(state.seed) || state.seed < 0 || state.seed > MAX_SEED) {
+    throw new UrlStateError(`the seed must be an integer from 0 to ${MAX_SEED}, got ${state.seed}`);
+  }
+  for (const spec of entry.controls) {
+    if (!(spec.id in state.controls)) throw new UrlStateError(`the state has no value for ${spec.label} (${spec.id})`);
+    const p = controlProblem(spec, state.controls[spec.id], manifest.actions);
+    if (p) throw new UrlStateError(p);
+  }
+  const extra = Object.keys(state.controls).find((id) => !entry.controls.some((c) => c.id === id));
+  if (extra) throw new UrlStateError(`${entry.label} has no control '${extra}'`);
+  return entry;
+}
+
+/** Why this state cannot become a link, or null when it can. */
+export function unlinkableReason(state: Pick<ShareState, 'source'>): string | null {
+  if (state.source?.kind === 'dropped') {
+    return `The history comes from a dropped file (${state.source.name}), which stays on this computer, so it cannot be linked. Pick a clip to share a link.`;
+  }
+  return null;
+}
+
+/** The state as ordered name/value pairs (URL parameters or element attributes). */
+export function encodeState(state: ShareState, manifest: Manifest): [string, string][] {
+  const why = unlinkableReason(state);
+  if (why) throw new UrlStateError(why);
+  const entry = validateState(state, manifest);
+  const out: [string, string][] = [
+    ['v', state.version], ['model', state.model], ['hash', state.hash], ['clip', state.clip],
+    ['start', String(state.start)], ['seed', String(state.seed)],
+  ];
+  for (const spec of entry.controls) out.push([spec.id, encodeValue(spec, state.controls[spec.id])]);
+  return out;
+}
+
+export function encodeSearch(state: ShareState, manifest: Manifest): string {
+  return new URLSearchParams(encodeState(state, manifest)).toString();
+}
+
+function wholeNumber(text: string, max = Number.MAX_SAFE_INTEGER): number | null {
+  if (!/^\d+$/.test(text.trim())) return null;
+  const v = Number(text);
+  return v <= max ? v : null;
+}
+
+export interface Decoded {
+  state: LinkState;
+  problems: Problem[];
+}
+
+/**
+ * Read what a link asks for. Invalid fields are left out (the page keeps its default for them)
+ * and each is named in `problems`, as is a link made against another model or site version.
+ * `reportUnknown` names parameters that are neither state, view option nor any model's control.
+ */
+export function decodeState(params: Iterable<[string, string]>, manifest: Manifest, siteVersion: string,
+  options: { reportUnknown?: boolean } = {}): Decoded {
+  const q = new Map<string, string>();
+  for (const [k, v] of params) q.set(k, v);
+  const problems: Problem[] = [];
+  const warn = (text: string) => problems.push({ level: 'warning', text });
+  if (!manifest.models.length) throw new UrlStateError('the manifest lists no models');
+
+  const asked = q.get('model');
+  let entry = asked === undefined ? manifest.models[0] : manifest.models.find((m) => m.id === asked);
+  if (!entry) {
+    entry = manifest.models[0];
+    warn(`This link asks for the model '${asked}', which this site does not serve; showing ${entry.label} instead, so the futures differ from the linked ones.`);
+  }
+  checkIds(entry);
+  const state: LinkState = { model: entry.id, controls: {} };
+
+  const version = q.get('v');
+  if (version !== undefined) state.version = version;
+  const hash = q.get('hash');
+  if (hash !== undefined) {
+    state.hash = hash;
+    if (asked === entry.id && hash !== shortHash(entry.hash)) {
+      warn(`This link was made with a different ${entry.label} (model hash ${hash}; this site's is ${shortHash(entry.hash)}). `
+        + `The futures shown come from this site's model and will differ from the linked ones.`);
+    }
+  }
+  if (version !== undefined && version !== siteVersion) {
+    const sameModel = hash !== undefined && asked === entry.id && hash === shortHash(entry.hash);
+    problems.push({
+      level: sameModel ? 'info' : 'warning',
+      text: `This link was made with motion-futures ${version}; this site is ${siteVersion}.`
+        + (sameModel ? ' The model is the same, so the futures should match.' : ''),
+    });
+  }
+
+  const clip = q.get('clip');
+  if (clip !== undefined) { if (clip) state.clip = clip; else warn('The link has an empty clip name; showing the default clip.'); }
+  const start = q.get('start');
+  if (start !== undefined) {
+    const v = wholeNumber(start);
+    if (v === null) warn(`The history start must be a frame number, got '${start}'; using the default.`);
+    else state.start = v;
+  }
+  const seed = q.get('seed');
+  if (seed !== undefined) {
+    const v = wholeNumber(seed, MAX_SEED);
+    if (v === null) warn(`The seed must be an integer from 0 to ${MAX_SEED}, got '${seed}'; using the default.`);
+    else state.seed = v;
+  }
+
+  for (const spec of entry.controls) {
+    const text = q.get(spec.id);
+    if (text === undefined) continue;
+    try {
+      const value = decodeValue(spec, text);
+      const p = controlProblem(spec, value, manifest.actions);
+      if (p) throw new Error(p);
+      state.controls[spec.id] = value;
+    } catch (err) {
+      warn(`${(err as Error).message}; using the default ${spec.label.toLowerCase()}.`);
+    }
+  }
+
+  const known = new Set<string>([...RESERVED, ...entry.controls.map((c) => c.id)]);
+  for (const key of q.keys()) {
+    if (known.has(key)) continue;
+    const owner = manifest.models.find((m) => m.controls.some((c) => c.id === key));
+    if (owner) warn(`This link sets '${key}', a control of ${owner.label} that ${entry.label} does not have; it was made for another model.`);
+    else if (options.reportUnknown) problems.push({ level: 'info', text: `Ignored the unknown link option '${key}'.` });
+  }
+  return { state, problems };
+}
