@@ -1,6 +1,7 @@
 // Build the site and serve dist/ with `vite preview` as a child process, stopped by its PID.
 import { spawn, type ChildProcess } from 'node:child_process';
 import { createServer } from 'node:net';
+import { resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
@@ -29,8 +30,11 @@ function run(args: string[], timeoutMs: number): Promise<void> {
   });
 }
 
-export function buildSite(timeoutMs = 300_000): Promise<void> {
-  return run(['build', '--logLevel', 'warn'], timeoutMs);
+/** `vite build` into dist/, or into outDir (the benchmark builds its own, so it never shares dist/ with tests). */
+export function buildSite(timeoutMs = 300_000, outDir?: string): Promise<void> {
+  // vite resolves a relative outDir against its root (web/), so pass it absolute
+  const out = outDir ? ['--outDir', resolve(ROOT, outDir), '--emptyOutDir'] : [];
+  return run(['build', '--logLevel', 'warn', ...out], timeoutMs);
 }
 
 export function freePort(): Promise<number> {
@@ -66,12 +70,13 @@ async function waitUntilServing(url: string, child: ChildProcess, log: () => str
   throw new Error(`vite preview did not answer at ${url} within ${timeoutMs} ms:\n${log()}`);
 }
 
-export async function startPreview(options: { basePath?: string; port?: number; timeoutMs?: number } = {}): Promise<PreviewServer> {
+export async function startPreview(options: { basePath?: string; port?: number; timeoutMs?: number; outDir?: string } = {}): Promise<PreviewServer> {
   const basePath = normaliseBasePath(options.basePath);
   const port = options.port ?? await freePort();
   const args = ['preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort'];
   // The build uses a relative base, so the same dist/ can be served under any path.
   if (basePath !== '/') args.push('--base', basePath);
+  if (options.outDir) args.push('--outDir', resolve(ROOT, options.outDir));
   const child = spawn(VITE, args, { cwd: ROOT, stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, NO_COLOR: '1' } });
   if (!child.pid) throw new Error('vite preview did not start');
   const pid = child.pid;

@@ -1,0 +1,252 @@
+// The browser half of `make bench`: build the site into runs/bench/dist, serve it with
+// `vite preview` (stopped by PID), and drive Chromium (tests/e2e/browser.ts: Debian's binary, a
+// fresh profile) through the plan export/bench writes: the bench page (web/bench.html) for
+// session loads, end-to-end cases and single graphs; the main page for navigation -> first
+// prediction, frame gaps during a K=50 prediction and the frame rate with K=50 futures playing.
+import { readFileSync, writeFileSync } from 'node:fs';
+import { resolve } from 'node:path';
+import type { Page } from 'playwright-core';
+import { openBrowser, type BrowserSession } from '../tests/e2e/browser';
+import { ROOT } from '../tests/e2e/server';
+import { buildSite, startPreview, type PreviewServer as Served } from '../tests/e2e/server';
+import type { BenchCase } from '../web/src/bench/main';
+
+interface Plan {
+  runs: number;
+  warmup: number;
+  dist: string;
+  cases: (BenchCase & { id: string; k: number })[];
+  models: { id: string; files: string[]; k50: boolean }[];
+  graphs: { id: string; file: string; feeds: Record<string, { dims: number[]; base64: string }>; variants: { name: string; file: string }[] }[];
+}
+
+const LOAD_REPEATS = 2; // plus the load cases() makes on its own fresh page
+const NAV_REPEATS = 3;
+const FPS_SECONDS = 3;
+const WARM_WORKER_MS = 2000;
+const WARM_GRAPH_MS = 300;
+// Session optimisation levels tried on the served graph (the site uses 'all').
+const LEVELS = ['disabled', 'basic', 'extended'] as const;
+
+const started = Date.now();
+const log = (text: string) => console.log(`bench: ${((Date.now() - started) / 1000).toFixed(0).padStart(4)} s  ${text}`);
+
+async function benchPage(b: BrowserSession, s: Served): Promise<Page> {
+  const { page } = b;
+  await page.goto(`${s.url}bench.html`);
+  await page.evaluate(() => window.mfBench!.ready);
+  return page;
+}
+
+type Loads = Record<string, { round_trip_ms: number[]; worker_ms: number[] }>;
+
+async function loads(b: BrowserSession, s: Served, plan: Plan): Promise<Loads> {
+  const out: Loads = {};
+  for (const m of plan.models) {
+    out[m.id] = { round_trip_ms: [], worker_ms: [] };
+    for (let i = 0; i < LOAD_REPEATS; i++) {
+      const page = await benchPage(b, s); // a fresh page: a fresh worker without sessions
+      const r = await page.evaluate((id) => window.mfBench!.load(id), m.id);
+      out[m.id].round_trip_ms.push(r.roundTripMs);
+      out[m.id].worker_ms.push(r.workerMs);
+    }
+  }
+  return out;
+}
+
+async function cases(b: BrowserSession, s: Served, plan: Plan, loaded: Loads) {
+  const out = [];
+  for (const m of plan.models) {
+    const own = plan.cases.filter((x) => x.model === m.id);
+    if (!own.length) continue;
+    const page = await benchPage(b, s);
+    const first = await page.evaluate((id) => window.mfBench!.load(id), m.id);
+    loaded[m.id] ??= { round_trip_ms: [], worker_ms: [] };
+    loaded[m.id].round_trip_ms.push(first.roundTripMs);
+    loaded[m.id].worker_ms.push(first.workerMs);
+    // warm the fresh worker (see graphs()): predictions for WARM_WORKER_MS before any case is timed
+    const warm = { model: own[0].model, clip: own[0].clip, start: own[0].start, request: own[0].request };
+    for (const t0 = Date.now(); Date.now() - t0 < WARM_WORKER_MS;) await page.evaluate((c) => window.mfBench!.run(c, 0, 3), warm);
+    for (const c of own) {
+      log(`case ${c.id}`);
+      const r = await page.evaluate((a) => window.mfBench!.run(a.c, a.warmup, a.runs),
+        { c: { model: c.model, clip: c.clip, start: c.start, request: c.request }, warmup: plan.warmup, runs: plan.runs });
+      out.push({ id: c.id, worker_ms: r.workerMs, round_trip_ms: r.roundTripMs, timings: r.timings, wasm_bytes: r.wasmBytes,
+        lengths: r.lengths, frames: r.frames });
+    }
+  }
+  return out;
+}
+
+async function graphs(b: BrowserSession, s: Served, plan: Plan) {
+  const page = await benchPage(b, s);
+  const out = [];
+  const profiles = [];
+  const time = (file: string, feeds: Plan['graphs'][number]['feeds'], extra: Record<string, unknown>) =>
+    page.evaluate((spec) => window.mfBench!.graph(spec as Parameters<NonNullable<Window['mfBench']>['graph']>[0]),
+      { base64: readFileSync(file).toString('base64'), feeds, warmup: plan.warmup, warmupMs: WARM_GRAPH_MS, runs: plan.runs, ...extra });
+  // V8 runs wasm from its baseline compiler first and tiers hot functions up while they run: one
+  // discarded job warms the graph worker's onnxruntime before anything is timed.
+  if (plan.graphs.length) await time(plan.graphs[0].file, plan.graphs[0].feeds, { warmupMs: WARM_WORKER_MS });
+  for (const g of plan.graphs) {
+    log(`graph ${g.id}`);
+    const r = await time(g.file, g.feeds, {});
+    const variants = [];
+    if (g.variants.length) {
+      for (const level of LEVELS) {
+        const v = await time(g.file, g.feeds, { optimization: level });
+        variants.push({ name: `served graph, session optimisation '${level}'`, ms: v.runMs, load_ms: v.loadMs, error: v.error });
+      }
+      for (const vf of g.variants) {
+        const v = await time(vf.file, g.feeds, {});
+        variants.push({ name: vf.name, ms: v.runMs, load_ms: v.loadMs, error: v.error });
+      }
+      const p = await time(g.file, g.feeds, { profile: true, warmup: 0, warmupMs: 0, runs: 3 });
+      if (p.profile) profiles.push({ graph: g.id, events: p.profile, runs: 3 });
+    }
+    out.push({ id: g.id, ms: r.runMs, reps: r.reps, load_ms: r.loadMs, error: r.error, variants });
+  }
+  return { graphs: out, profiles };
+}
+
+/** Records when body[data-predict-status] first says 'done' (ms since navigation start). */
+function watchDone(): void {
+  const w = window as unknown as { __mfDone?: number };
+  new MutationObserver(() => {
+    if (w.__mfDone === undefined && document.body?.dataset.predictStatus === 'done') w.__mfDone = performance.now();
+  }).observe(document, { attributes: true, subtree: true, attributeFilter: ['data-predict-status'] });
+}
+
+async function navigation(s: Served, plan: Plan) {
+  const out = [];
+  for (const m of plan.models) {
+    const first: number[] = [];
+    const requests = { page: new Set<string>(), service_worker: new Set<string>() };
+    let error: string | undefined;
+    for (let i = 0; i < NAV_REPEATS; i++) {
+      const b = await openBrowser(); // a fresh profile: nothing cached, no service worker yet
+      try {
+        b.context.on('request', (r) => {
+          if (!r.url().endsWith('.onnx')) return;
+          (r.serviceWorker() ? requests.service_worker : requests.page).add(r.url());
+        });
+        await b.page.addInitScript(watchDone);
+        await b.page.goto(`${s.url}?model=${encodeURIComponent(m.id)}`);
+        await b.page.waitForFunction(() => (window as unknown as { __mfDone?: number }).__mfDone !== undefined, null, { timeout: 60_000 });
+        first.push(await b.page.evaluate(() => (window as unknown as { __mfDone: number }).__mfDone));
+      } catch (err) {
+        error = (err as Error).message.split('\n')[0];
+      } finally {
+        await b.close();
+      }
+    }
+    log(`navigation ${m.id}: ${first.map((x) => x.toFixed(0)).join(', ')} ms`);
+    out.push({ model: m.id, own_files: m.files, first_prediction_ms: first, error,
+      onnx_requests: { page: [...requests.page], service_worker: [...requests.service_worker] } });
+  }
+  return out;
+}
+
+/** rAF intervals on the main page while the next prediction runs: from pressing Predict until the
+ * result is shown and drawn (two frames more). `idleMs` of intervals first, as the baseline. */
+async function gapsDuringPrediction(page: Page, idleMs: number): Promise<{ idle: number[]; gaps: number[]; ms: number }> {
+  await page.evaluate((idle) => new Promise<void>((ready) => {
+    const w = window as unknown as { __mfGaps: number[]; __mfIdle: number[]; __mfRecording: boolean; __mfT0?: number; __mfShownMs?: number };
+    w.__mfGaps = [];
+    w.__mfIdle = [];
+    w.__mfRecording = true;
+    w.__mfT0 = undefined;
+    let last = performance.now();
+    const tick = (t: number) => {
+      (w.__mfT0 === undefined ? w.__mfIdle : w.__mfGaps).push(t - last);
+      last = t;
+      if (w.__mfRecording) requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+    document.body.dataset.predictStatus = 'waiting';
+    new MutationObserver((_, obs) => {
+      if (document.body.dataset.predictStatus !== 'done') return;
+      obs.disconnect();
+      w.__mfShownMs = performance.now() - w.__mfT0!;
+      requestAnimationFrame(() => requestAnimationFrame(() => { w.__mfRecording = false; }));
+    }).observe(document.body, { attributes: true, attributeFilter: ['data-predict-status'] });
+    setTimeout(() => { w.__mfT0 = performance.now(); ready(); }, idle);
+  }), idleMs);
+  await page.locator('#predict').click();
+  await page.waitForFunction(() => (window as unknown as { __mfRecording: boolean }).__mfRecording === false, null, { timeout: 90_000 });
+  return page.evaluate(() => {
+    const w = window as unknown as { __mfGaps: number[]; __mfIdle: number[]; __mfShownMs: number };
+    return { idle: w.__mfIdle.slice(1), gaps: w.__mfGaps, ms: w.__mfShownMs }; // the first idle interval starts mid-frame
+  });
+}
+
+async function frames(s: Served, plan: Plan) {
+  const out = [];
+  for (const m of plan.models.filter((x) => x.k50)) {
+    const b = await openBrowser();
+    try {
+      const { page } = b;
+      await page.goto(`${s.url}?model=${encodeURIComponent(m.id)}&k=50`);
+      await page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 90_000 });
+      const k = Number(await page.evaluate(() => document.body.dataset.predictionK));
+      // 1. the stage still (playback paused): what the prediction itself costs the main thread
+      await page.evaluate(() => window.motionFutures!.player.pause());
+      const still = await gapsDuringPrediction(page, 1000);
+      // 2. the frame rate with the K=50 futures playing (show() starts playback)
+      const fps = await page.evaluate((seconds) => new Promise<number>((done) => {
+        let n = 0;
+        const t0 = performance.now();
+        const tick = () => {
+          n++;
+          if (performance.now() - t0 < seconds * 1000) requestAnimationFrame(tick);
+          else done(n / ((performance.now() - t0) / 1000));
+        };
+        requestAnimationFrame(tick);
+      }), FPS_SECONDS);
+      const playing = await page.evaluate(() => window.motionFutures!.player.state.playing);
+      // 3. another prediction while the K=50 futures play
+      const moving = await gapsDuringPrediction(page, 1000);
+      const max = (xs: number[]) => (xs.length ? Math.max(...xs) : null);
+      log(`frames ${m.id} K=${k}: longest gap ${max(still.gaps)?.toFixed(0)} ms still, ${max(moving.gaps)?.toFixed(0)} ms playing; ${fps.toFixed(1)} fps`);
+      out.push({ model: m.id, k, max_gap_ms: max(still.gaps), idle_max_gap_ms: max(still.idle), gaps_ms: still.gaps,
+        prediction_ms: still.ms, fps, playing, playing_max_gap_ms: max(moving.gaps), playing_idle_max_gap_ms: max(moving.idle),
+        playing_prediction_ms: moving.ms, playing_gaps_ms: moving.gaps });
+    } catch (err) {
+      out.push({ model: m.id, k: 50, error: (err as Error).message.split('\n')[0] });
+    } finally {
+      await b.close();
+    }
+  }
+  return out;
+}
+
+export async function main(planPath: string, outPath: string): Promise<void> {
+  const plan: Plan = JSON.parse(readFileSync(planPath, 'utf8'));
+  log(`vite build into ${plan.dist}`);
+  const t0 = performance.now();
+  await buildSite(300_000, plan.dist);
+  const buildMs = performance.now() - t0;
+  const s = await startPreview({ outDir: plan.dist });
+  const notes: string[] = [];
+  try {
+    const b = await openBrowser();
+    let doc: Record<string, unknown>;
+    try {
+      const chromium = await b.page.evaluate(() => navigator.userAgent.match(/Chrome\/[\d.]+/)?.[0] ?? navigator.userAgent);
+      log('session loads');
+      const load = await loads(b, s, plan);
+      const c = await cases(b, s, plan, load);
+      const g = await graphs(b, s, plan);
+      doc = { chromium, load, cases: c, graphs: g.graphs, profiles: g.profiles };
+    } finally {
+      await b.close();
+    }
+    const nav = await navigation(s, plan);
+    const fr = await frames(s, plan);
+    const ortWeb = JSON.parse(readFileSync(resolve(ROOT, 'node_modules/onnxruntime-web/package.json'), 'utf8')).version;
+    writeFileSync(outPath, JSON.stringify({ ...doc, node: process.version, onnxruntime_web: ortWeb, build_ms: buildMs,
+      navigation: nav, frames: fr, fps_seconds: FPS_SECONDS, notes }));
+  } finally {
+    await s.stop();
+  }
+}

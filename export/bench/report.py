@@ -1,0 +1,317 @@
+"""The benchmark's numbers into targets and a markdown page: pure functions of the two sides' JSON."""
+from __future__ import annotations
+
+import numpy as np
+
+# The targets of issue 9 on this machine (ms, MB = 10^6 bytes).
+STEP_K10_MS = 30.0
+ACTIONS3_K10_MS = 100.0
+K50_MS = 250.0
+MAX_RATIO = 4.0
+FIRST_PREDICTION_MS = 2500.0
+FRAME_GAP_MS = 50.0
+ONNX_TOTAL_GZ = 2e6
+DIST_GZ = 6e6
+
+
+def spread(values: list[float]) -> dict:
+    """Median and interquartile range (numpy's linear quantiles); n to show how many runs."""
+    if not values:
+        raise ValueError("no runs to summarise")
+    q1, med, q3 = (float(x) for x in np.percentile(np.asarray(values, np.float64), [25, 50, 75]))
+    return {"median": med, "q1": q1, "q3": q3, "iqr": q3 - q1, "n": len(values)}
+
+
+def ratio(browser_ms: list[float], native_ms: list[float]) -> float:
+    """Browser median over native median."""
+    native = spread(native_ms)["median"]
+    if native <= 0:
+        raise ValueError("native median is not positive")
+    return spread(browser_ms)["median"] / native
+
+
+def fmt_ms(s: dict) -> str:
+    """Median [q1–q3] with enough decimals for sub-millisecond graphs."""
+    d = 1 if s["median"] >= 1 else 2 if s["median"] >= 0.1 else 3
+    return f"{s['median']:.{d}f} [{s['q1']:.{d}f}–{s['q3']:.{d}f}]"
+
+
+def table(headers: list[str], rows: list[list[str]]) -> str:
+    """A GitHub markdown table; every row must have one cell per header."""
+    for r in rows:
+        if len(r) != len(headers):
+            raise ValueError(f"row {r} has {len(r)} cells for {len(headers)} headers")
+    def cell(text: str) -> str:
+        return str(text).replace("|", "\\|").replace("\n", " ")
+    lines = ["| " + " | ".join(map(cell, headers)) + " |", "|" + "|".join("---" for _ in headers) + "|"]
+    return "\n".join(lines + ["| " + " | ".join(map(cell, r)) + " |" for r in rows])
+
+
+def _target(name: str, limit: str, items: list[tuple[str, float | None, bool | None]]) -> dict:
+    """items: (what, measured, met); met None = not measured. The target is met when every item is."""
+    measured = [m for _, _, m in items if m is not None]
+    met = None if not measured else all(measured)
+    return {"target": name, "limit": limit, "met": met,
+            "items": [{"what": w, "value": v, "met": m} for w, v, m in items]}
+
+
+def targets(native: dict, browser: dict, sizes: list[dict], dist: dict, cases: list[dict]) -> list[dict]:
+    case_ms = {c["id"]: spread(c["round_trip_ms"])["median"] for c in browser["cases"]}
+    out = []
+    items = []
+    for c in cases:
+        if c["id"].endswith("/k10") or (c["k"] == 1 and f"{c['model']}/k10" not in {x["id"] for x in cases}):
+            v = case_ms.get(c["id"])
+            items.append((c["id"], v, None if v is None else v < STEP_K10_MS))
+    out.append(_target("one predictor step at K=10 (K=1 for a model without K)", f"< {STEP_K10_MS:.0f} ms", items))
+    items = [(c["id"], case_ms.get(c["id"]), None if c["id"] not in case_ms else case_ms[c["id"]] < ACTIONS3_K10_MS)
+             for c in cases if c["actions"] >= 3 and c["k"] == 10]
+    out.append(_target("WAT at K=10, 3-action sequence", f"< {ACTIONS3_K10_MS:.0f} ms", items))
+    items = [(c["id"], case_ms.get(c["id"]), None if c["id"] not in case_ms else case_ms[c["id"]] < K50_MS)
+             for c in cases if c["k"] == 50]
+    out.append(_target("any model at K=50, one step", f"< {K50_MS:.0f} ms", items))
+    nat = {g["id"]: g["native_ms"] for g in native["graphs"]}
+    items = []
+    for g in browser["graphs"]:
+        r = ratio(g["ms"], nat[g["id"]]) if g.get("ms") else None
+        items.append((g["id"], r, None if r is None else r <= MAX_RATIO))
+    out.append(_target("browser/native ratio per graph", f"<= {MAX_RATIO:.0f}", items))
+    items = [(n["model"], spread(n["first_prediction_ms"])["median"] if n.get("first_prediction_ms") else None,
+              spread(n["first_prediction_ms"])["median"] < FIRST_PREDICTION_MS if n.get("first_prediction_ms") else None)
+             for n in browser["navigation"]]
+    out.append(_target("first prediction on screen after navigation", f"< {FIRST_PREDICTION_MS:.0f} ms", items))
+    items = [(f"{f['model']} K={f['k']}", f.get("max_gap_ms"),
+              None if f.get("max_gap_ms") is None else f["max_gap_ms"] < FRAME_GAP_MS) for f in browser["frames"]]
+    out.append(_target("main-thread frame gaps during a K=50 prediction", f"< {FRAME_GAP_MS:.0f} ms", items))
+    items = [(s["model"], s["onnx_gzip_bytes"] / 1e6, s["within_cap"]) for s in sizes]
+    total = sum(s["onnx_gzip_bytes"] for s in sizes)
+    items.append(("all models together", total / 1e6, total < ONNX_TOTAL_GZ))
+    for n in browser["navigation"]:
+        own = set(n["own_files"])
+        other = sorted({u.rsplit("/", 1)[-1] for u in n["onnx_requests"]["page"]} - own)
+        items.append((f"lazy: opening {n['model']} fetched other models' files {other}", None, not other))
+    out.append(_target("served ONNX files: each within its cap, together, lazily per model",
+                       f"cap per model; < {ONNX_TOTAL_GZ / 1e6:.0f} MB gz together", items))
+    out.append(_target("dist/ gzipped", f"< {DIST_GZ / 1e6:.0f} MB", [("dist/", dist["gzip_bytes"] / 1e6,
+                                                                      dist["gzip_bytes"] < DIST_GZ)]))
+    return out
+
+
+def _met(m: bool | None) -> str:
+    return {True: "met", False: "**missed**", None: "not measured"}[m]
+
+
+def analysis(doc: dict) -> list[str]:
+    """Facts computed from the run that explain the misses (bullets for the markdown)."""
+    nat, br = doc["native"], doc["browser"]
+    sizes = {s["model"]: s for s in doc["sizes"]}
+    nat_graphs = {g["id"]: g for g in nat["graphs"]}
+    lines = []
+    timed = [g for g in br["graphs"] if g.get("ms")]
+    if timed:
+        def nodes(g):
+            n = nat_graphs[g["id"]]
+            return sizes[n["model"]]["graphs"][n["role"]]["nodes"]
+        floor = min(timed, key=lambda g: (nodes(g), spread(g["ms"])["median"]))
+        fb, fn = spread(floor["ms"])["median"], spread(nat_graphs[floor["id"]]["native_ms"])["median"]
+        lines.append(f"Per-call floor: the smallest graph ({floor['id']}, {nodes(floor)} nodes) takes {fb:.2f} ms per "
+                     f"`session.run` in the browser against {fn:.3f} ms natively. A graph whose native time is near "
+                     "this floor gets a large ratio from the fixed cost of a call (inputs copied into the wasm heap, "
+                     "outputs copied out, an async hop), not from its arithmetic.")
+        for g in timed:
+            n = nat_graphs[g["id"]]
+            k = nodes(g)
+            b, nv = spread(g["ms"])["median"], spread(n["native_ms"])["median"]
+            # per-node overhead shows where each node has little arithmetic natively (< 2 µs)
+            if k >= 200 and 1e3 * nv / k < 2 and ratio(g["ms"], n["native_ms"]) > MAX_RATIO:
+                lines.append(f"{g['id']}: {k} nodes; {1e3 * b / k:.1f} µs per node in the browser, "
+                             f"{1e3 * nv / k:.1f} µs natively: per-node overhead (an unrolled recurrence; a fused "
+                             "recurrent op or fewer, larger ops is the fix at export).")
+    profiles = {p["graph"]: p for p in doc.get("profiles", [])}
+    for g in timed:
+        n = nat_graphs[g["id"]]
+        nv = spread(n["native_ms"])["median"]
+        prof = profiles.get(g["id"])
+        if nodes(g) < 200 and nv >= 1 and ratio(g["ms"], n["native_ms"]) > MAX_RATIO and prof and prof["node_ms"] > 0:
+            top = list(prof["op_ms"].items())[:3]
+            share = sum(ms for _, ms in top) / prof["node_ms"]
+            lines.append(f"{g['id']}: {nodes(g)} nodes and {nv:.1f} ms natively, so not per-node overhead; "
+                         f"{', '.join(op for op, _ in top)} take {100 * share:.0f}% of the profiled node time: "
+                         "arithmetic, where onnxruntime-web's wasm SIMD (128-bit) kernels stand against native "
+                         "kernels with wider vectors.")
+    for c in br["cases"]:
+        if not c["id"].endswith("/k10"):
+            continue
+        per_run = [sum(t["ms"] for t in run) for run in c["timings"]]
+        if per_run:
+            graphs_ms, total = spread(per_run)["median"], spread(c["worker_ms"])["median"]
+            calls = len(c["timings"][0])
+            lines.append(f"{c['id']}: {total:.1f} ms in the worker, of which {graphs_ms:.1f} ms in {calls} graph calls; "
+                         f"the rest ({total - graphs_ms:.1f} ms) is the predictor's own TypeScript "
+                         "(noise, stopping, smoothness, interpolation) and tensor wrapping.")
+    loads = {mid: spread(v["round_trip_ms"])["median"] for mid, v in br["load"].items()}
+    warm_load = {}
+    for g in br["graphs"]:
+        n = nat_graphs[g["id"]]
+        if g.get("load_ms") is not None:
+            warm_load.setdefault(n["model"], {})[n["role"]] = g["load_ms"]
+    for n in br["navigation"]:
+        if n.get("first_prediction_ms") and n["model"] in loads:
+            warm = warm_load.get(n["model"], {})
+            lines.append(f"First prediction with {n['model']}: {spread(n['first_prediction_ms'])['median']:.0f} ms. Loading the "
+                         f"model in a fresh bench-page worker (wasm start-up, fetch, every session) took "
+                         f"{loads[n['model']]:.0f} ms; creating the largest session again in the warmed graph worker took "
+                         f"{max(warm.values()):.0f} ms." if warm else "")
+    return [line for line in lines if line]
+
+
+def markdown(doc: dict) -> str:
+    m, nat, br = doc["machine"], doc["native"], doc["browser"]
+    sizes = {s["model"]: s for s in doc["sizes"]}
+    nat_cases = {c["id"]: c for c in nat["cases"]}
+    nat_graphs = {g["id"]: g for g in nat["graphs"]}
+    out = ["# Performance", "",
+           "Written by `make bench` (`python -m export bench`: native onnxruntime in Python, then bench/ drives "
+           "headless Chromium on the built site). Numbers are milliseconds, median [interquartile range] over "
+           f"{doc['runs']} runs after {doc['warmup']} warm-up runs, unless said otherwise. Raw numbers: "
+           f"`{doc['json_path']}`.", "",
+           "## Machine", "",
+           f"- CPU: {m['cpu']}, {m['cores']} cores; {m['os']}",
+           f"- Browser: {m['chromium']} (headless, software WebGL), onnxruntime-web {m['onnxruntime_web']} "
+           "(wasm, 1 thread, graph optimisation 'all')",
+           f"- Node {m['node']}; Python {m['python']}, onnxruntime {m['onnxruntime']} (1 thread)",
+           f"- Run: {doc['date']}, {doc['seconds']:.0f} s in all; load average (1 min) {m['load_start']:.1f} at the "
+           f"start, {m['load_end']:.1f} at the end (other work shared the 2 cores: spreads are wide)", "",
+           "## Targets", ""]
+    rows = []
+    for t in doc["targets"]:
+        shown = [f"{i['what']}: {i['value']:.2f}" if isinstance(i["value"], (int, float)) else i["what"]
+                 for i in t["items"] if i["met"] is False]
+        rows.append([t["target"], t["limit"], _met(t["met"]), "; ".join(shown) or "—"])
+    out += [table(["target", "limit", "result", "misses"], rows), ""]
+
+    out += ["## End-to-end prediction", "",
+            "Round trip: from the page's request to the result on the page (the predictor worker's "
+            "`predict`: noise, graphs, stopping, smoothness, interpolation, plus the messages). Worker: "
+            "`predict` inside the worker. Native: the Python predictor on native onnxruntime.", ""]
+    rows = []
+    for c in br["cases"]:
+        n = nat_cases[c["id"]]
+        rt, wk, nv = spread(c["round_trip_ms"]), spread(c["worker_ms"]), spread(n["ms"])
+        rows.append([c["id"], fmt_ms(rt), fmt_ms(wk), fmt_ms(nv), f"{wk['median'] / nv['median']:.1f}"])
+    out += [table(["case", "browser round trip", "browser worker", "native", "worker/native"], rows), ""]
+    rows = [[mid, fmt_ms(spread(v["round_trip_ms"])), f"{nat['load_ms'][mid]:.0f}"] for mid, v in br["load"].items()]
+    out += ["Session load (fetch and create every graph's session, fresh page; native: session creation only):", "",
+            table(["model", "browser", "native"], rows), ""]
+
+    out += ["## Graphs alone", "",
+            "Each graph the cases called, at each batch, on the inputs the predictor gave it "
+            "(bench page's graph worker; native: one onnxruntime session, one thread). The browser's clock ticks in "
+            "0.1 ms steps (no cross-origin isolation), so each browser sample is the mean of enough back-to-back runs "
+            "to last 5 ms.", ""]
+    rows = []
+    for g in br["graphs"]:
+        n = nat_graphs[g["id"]]
+        facts = sizes[n["model"]]["graphs"][n["role"]]
+        if g.get("ms"):
+            b = spread(g["ms"])
+            rows.append([g["id"], str(facts["nodes"]), fmt_ms(b), fmt_ms(spread(n["native_ms"])),
+                         f"{ratio(g['ms'], n['native_ms']):.1f}"])
+        else:
+            rows.append([g["id"], str(facts["nodes"]), f"error: {g.get('error')}", fmt_ms(spread(n["native_ms"])), "—"])
+    out += [table(["graph/batch", "nodes", "browser", "native", "ratio"], rows), ""]
+
+    out += ["### Attempts on the ratio", "",
+            "At the K=10 batch: the served graph with lower session optimisation levels in the browser, "
+            "and two rewritten graphs (onnxruntime's offline 'extended' optimisation saved as ONNX; "
+            "dynamic int8 weights), each timed on both sides. `rel. diff`: largest output difference "
+            "against the served graph, relative to the output's RMS (native).", ""]
+    rows = []
+    for g in br["graphs"]:
+        n = nat_graphs[g["id"]]
+        if not g.get("variants"):
+            continue
+        nodes = sizes[n["model"]]["graphs"][n["role"]]["nodes"]
+        served = {"name": "served graph, session optimisation 'all' (the site)", "ms": g.get("ms"), "load_ms": g.get("load_ms"),
+                  "error": g.get("error")}
+        nvar = {v["name"]: v for v in n["variants"]} | {served["name"]: {"native_ms": n["native_ms"], "nodes": nodes, "rel_diff": 0.0}}
+        for v in [served] + g["variants"]:
+            nv = nvar.get(v["name"], {})
+            b = fmt_ms(spread(v["ms"])) if v.get("ms") else f"error: {v.get('error') or nv.get('error')}"
+            nat_ms = nv.get("native_ms")
+            rows.append([g["id"], v["name"], str(nv.get("nodes", "—")),
+                         f"{v['load_ms']:.0f}" if v.get("load_ms") is not None else "—", b,
+                         fmt_ms(spread(nat_ms)) if nat_ms else "—",
+                         f"{ratio(v['ms'], nat_ms):.1f}" if nat_ms and v.get("ms") else "—",
+                         f"{nv['rel_diff']:.1e}" if "rel_diff" in nv else "—"])
+        shown = {v["name"] for v in g["variants"]}
+        for v in n["variants"]:  # attempts that failed natively never reached the browser
+            if v["name"] not in shown and "error" in v:
+                rows.append([g["id"], v["name"], "—", "—", "—", f"error: {v['error'][:160]}", "—", "—"])
+    out += [table(["graph/batch", "attempt", "nodes", "browser session load", "browser run", "native run", "ratio",
+                   "rel. diff"], rows), ""]
+
+    out += ["## Page", "",
+            "First prediction on screen: from navigation start to `data-predict-status=done` on the main page "
+            "(`?model=ID`, a fresh profile each time, default controls). Frame gaps: the longest interval between "
+            "`requestAnimationFrame` callbacks on the main page while a K=50 prediction runs (Predict pressed to "
+            "result shown). Frame rate: `requestAnimationFrame` callbacks per second over "
+            f"{br.get('fps_seconds', 0):.0f} s with the K=50 futures playing.", ""]
+    rows = [[n["model"], fmt_ms(spread(n["first_prediction_ms"])) if n.get("first_prediction_ms") else f"error: {n.get('error')}",
+             ", ".join(sorted({u.rsplit('/', 1)[-1] for u in n["onnx_requests"]["page"]})) or "—",
+             str(len(n["onnx_requests"]["service_worker"]))] for n in br["navigation"]]
+    out += [table(["model", "first prediction (ms)", "ONNX fetched by the page", "ONNX fetched by the service worker"], rows), "",
+            "Requests are counted until the first prediction is shown. The page fetches only the chosen model's "
+            "files; the offline service worker (web/src/embed/offline.ts registers it after the first prediction) "
+            "then precaches the whole site, every model included, in the background.", ""]
+    def num(v, digits=0):
+        return "—" if v is None else f"{v:.{digits}f}"
+    rows = [[f["model"], str(f["k"]), num(f.get("idle_max_gap_ms")),
+             num(f.get("max_gap_ms")) if f.get("error") is None else f"error: {f['error']}",
+             num(f.get("prediction_ms")), num(f.get("fps"), 1), num(f.get("playing_idle_max_gap_ms")),
+             num(f.get("playing_max_gap_ms")), num(f.get("playing_prediction_ms"))] for f in br["frames"]]
+    out += [table(["model", "K", "still: longest gap idle (ms)", "still: longest gap, Predict to shown (ms)",
+                   "still: Predict to shown (ms)", "fps, K=50 playing", "playing: longest gap idle (ms)",
+                   "playing: longest gap, Predict to shown (ms)", "playing: Predict to shown (ms)"], rows), "",
+            "\"Still\": playback paused before Predict (the target is checked on this: what the prediction costs the "
+            "main thread). \"Playing\": the same with the previous K=50 futures playing; there the frames are long "
+            "before Predict is pressed (see the frame rate).", ""]
+    out += ["## Sizes", "", f"`dist/`: {doc['dist']['bytes'] / 1e6:.2f} MB raw, {doc['dist']['gzip_bytes'] / 1e6:.2f} MB "
+            f"gzipped ({doc['dist']['files']} files; each file gzipped alone, level 9). Largest:", ""]
+    out += [table(["file", "raw (MB)", "gzipped (MB)"], [[f["file"], f"{f['bytes'] / 1e6:.2f}", f"{f['gzip_bytes'] / 1e6:.2f}"]
+                                                      for f in doc["dist"]["largest"]]), ""]
+    rows = []
+    for s in doc["sizes"]:
+        for role, g in s["graphs"].items():
+            rows.append([s["model"], g["file"], f"{g['bytes'] / 1e3:.0f}", f"{g['gzip_bytes'] / 1e3:.0f}", f"{g['params']:,}",
+                         str(g["nodes"])])
+        cap = f"cap {s['cap_mb']} MB" if s["cap_mb"] is not None else "no cap"
+        rows.append([s["model"], f"**all ({cap})**", f"{s['onnx_bytes'] / 1e3:.0f}", f"{s['onnx_gzip_bytes'] / 1e3:.0f}",
+                     f"{s['params']:,}", ""])
+    out += [table(["model", "ONNX file", "kB", "kB gzipped", "parameters", "nodes"], rows), ""]
+
+    missed = [t for t in doc["targets"] if t["met"] is False]
+    if missed:
+        out += ["## Missed targets: profile", ""]
+        for t in missed:
+            out += [f"### {t['target']} ({t['limit']})", ""]
+            for i in t["items"]:
+                if i["met"] is False:
+                    v = f": {i['value']:.2f}" if isinstance(i["value"], (int, float)) else ""
+                    out.append(f"- {i['what']}{v}")
+            out.append("")
+        out += ["What the numbers say:", ""] + [f"- {line}" for line in analysis(doc)] + [""]
+        out += ["Node counts and op types of every served graph (what onnxruntime-web pays per node):", ""]
+        rows = [[s["model"], role, str(g["nodes"]), ", ".join(f"{op} {n}" for op, n in list(g["ops"].items())[:8])]
+                for s in doc["sizes"] for role, g in s["graphs"].items()]
+        out += [table(["model", "graph", "nodes", "op types (most frequent first)"], rows), ""]
+        if doc.get("profiles"):
+            out += ["Browser profile (onnxruntime-web per-node events, mean of 3 runs per graph at the K=10 batch; time per op "
+                    "type). Profiling adds a cost to every node, so the run times here are longer than above; the "
+                    "split over op types is what it shows.", ""]
+            rows = [[p["graph"], ", ".join(f"{op} {ms:.2f} ms" for op, ms in list(p["op_ms"].items())[:6]),
+                     f"{p['node_ms']:.2f}", f"{p['run_ms']:.2f}"] for p in doc["profiles"]]
+            out += [table(["graph/batch", "op types by time", "sum of node times (ms)", "run (ms)"], rows), ""]
+    if doc.get("notes"):
+        out += ["## Notes", ""] + [f"- {n}" for n in doc["notes"]] + [""]
+    return "\n".join(out)

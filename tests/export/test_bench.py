@@ -1,0 +1,89 @@
+"""The benchmark's pure parts (export/bench): planning, graph facts, statistics, profile, tables."""
+import numpy as np
+import onnx
+import pytest
+from onnx import TensorProto, helper, numpy_helper
+
+from export.bench import dist_sizes, profile_summary
+from export.bench.native import cap_mb, graph_facts, plan, rel_diff
+from export.bench.report import ratio, spread, table
+
+ACTIONS = ["walk", "run", "jump"]
+
+
+def _entry(mid, method, controls):
+    return {"id": mid, "method": method, "config": f"{mid}.json", "params": {}, "controls": controls, "graphs": {}}
+
+
+def test_plan_covers_k_and_adds_a_three_action_row_for_action_models():
+    manifest = {"actions": ACTIONS, "models": [
+        _entry("det", "regression", [{"id": "horizon"}]),
+        _entry("wat", "wat", [{"id": "k"}, {"id": "actions", "default": ["walk"]}]),
+    ]}
+    cases = plan(manifest)
+    assert [c["id"] for c in cases] == ["det/k1", "wat/k1", "wat/k10", "wat/k50", "wat/k10-a3"]
+    seq = cases[-1]["request"]["actions"]
+    assert seq == ["walk", "run", "jump"]
+    assert cases[1]["request"]["actions"] == ["walk"] and cases[2]["request"]["k"] == 10
+
+
+def test_caps_follow_the_method_and_the_transformer_variant():
+    assert cap_mb(_entry("lcp-vae", "lcp_vae", [])) == 0.25
+    assert cap_mb(_entry("wat-transformer", "wat", [])) == 0.55
+    assert cap_mb(_entry("wat-rnn", "wat", [])) == 0.45
+    assert cap_mb(_entry("zero", "zero_velocity", [])) is None
+
+
+def test_graph_facts_count_nodes_ops_and_parameters(tmp_path):
+    w = numpy_helper.from_array(np.ones((4, 3), np.float32), "w")
+    c = helper.make_node("Constant", [], ["b"], value=numpy_helper.from_array(np.zeros(3, np.float32)))
+    mm = helper.make_node("MatMul", ["x", "w"], ["h"])
+    add = helper.make_node("Add", ["h", "b"], ["y"])
+    relu = helper.make_node("Relu", ["y"], ["z"])
+    g = helper.make_graph([c, mm, add, relu], "g", [helper.make_tensor_value_info("x", TensorProto.FLOAT, [1, 4])],
+                          [helper.make_tensor_value_info("z", TensorProto.FLOAT, [1, 3])], [w])
+    path = tmp_path / "g.onnx"
+    onnx.save(helper.make_model(g), path)
+    facts = graph_facts(path)
+    assert facts["nodes"] == 4 and facts["params"] == 12 + 3
+    assert facts["ops"] == {"Constant": 1, "MatMul": 1, "Add": 1, "Relu": 1}
+    assert 0 < facts["gzip_bytes"] and facts["bytes"] == path.stat().st_size
+
+
+def test_spread_is_median_and_quartiles_and_ratio_uses_medians():
+    s = spread([4.0, 1.0, 3.0, 2.0, 5.0])
+    assert (s["median"], s["q1"], s["q3"], s["iqr"], s["n"]) == (3.0, 2.0, 4.0, 2.0, 5)
+    assert ratio([10.0, 12.0, 100.0], [2.0, 3.0, 4.0]) == pytest.approx(4.0)
+    with pytest.raises(ValueError, match="no runs"):
+        spread([])
+
+
+def test_rel_diff_is_relative_to_the_output_rms():
+    a = {"y": np.array([3.0, -3.0, 3.0, -3.0], np.float32)}
+    assert rel_diff(a, {"y": a["y"] + np.array([0, 0.3, 0, 0], np.float32)}) == pytest.approx(0.1)
+
+
+def test_profile_summary_sums_kernel_time_per_op_and_averages_runs():
+    events = [{"cat": "Session", "name": "model_run", "dur": 900},
+              {"cat": "Session", "name": "model_run", "dur": 1100},
+              {"cat": "Node", "name": "a_kernel_time", "dur": 300, "args": {"op_name": "MatMul"}},
+              {"cat": "Node", "name": "b_kernel_time", "dur": 500, "args": {"op_name": "MatMul"}},
+              {"cat": "Node", "name": "c_kernel_time", "dur": 200, "args": {"op_name": "Add"}},
+              {"cat": "Node", "name": "c_fence_before", "dur": 999, "args": {"op_name": "Add"}}]
+    p = profile_summary("m/g/b10", events, runs=2)
+    assert list(p["op_ms"]) == ["MatMul", "Add"]
+    assert p["op_ms"]["MatMul"] == pytest.approx(0.4) and p["node_ms"] == pytest.approx(0.5)
+    assert p["run_ms"] == pytest.approx(1.0)
+
+
+def test_table_checks_row_width_and_dist_sizes_sum_files(tmp_path):
+    assert table(["a", "b"], [["1", "2"]]).splitlines() == ["| a | b |", "|---|---|", "| 1 | 2 |"]
+    with pytest.raises(ValueError, match="2 headers"):
+        table(["a", "b"], [["1"]])
+    (tmp_path / "x").mkdir()
+    (tmp_path / "x" / "a.txt").write_bytes(b"a" * 1000)
+    (tmp_path / "b.bin").write_bytes(bytes(range(256)))
+    d = dist_sizes(tmp_path)
+    assert d["files"] == 2 and d["bytes"] == 1256 and d["largest"][0]["file"] == "b.bin"
+    with pytest.raises(FileNotFoundError, match="no built site"):
+        dist_sizes(tmp_path / "empty")
