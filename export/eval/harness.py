@@ -53,6 +53,7 @@ COLUMNS: dict[str, tuple[str, str, str, bool]] = {
     "smooth": ("Transition smoothness (Eq. 4)", "mm²", "lower", False),
     "speed": ("Joint speed, last second", "m/s", "", False),
     "length": ("Mean length", "frames", "", False),
+    "stopped": ("Segments stopped (Eq. 8)", "%", "", False),   # variable-length methods only
 }
 
 
@@ -306,6 +307,8 @@ def run_metrics(samples: list[Sample], table: dict, classifiers: dict[str, Class
             segs = s.segments[j] if j < len(s.segments) and s.segments[j] else [{"length": int(n)}]
             for seg in segs:
                 lengths.setdefault(seg.get("action") or s.action, []).append(int(seg["length"]))
+                if "stopped" in seg:
+                    vals["stopped"].append(100.0 * bool(seg["stopped"]))
     out = {c: float(np.mean(v)) for c, v in vals.items() if v}
     intervals = {}
     if t >= frames and samples:

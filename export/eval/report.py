@@ -63,6 +63,30 @@ def _part_text(p: dict) -> str:
             f"({label}, {p['table']}; difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}): {p['status']}")
 
 
+def _comparisons(doc: dict) -> list[str]:
+    """One small table per comparison and table: columns are the rows compared, lines the metrics."""
+    from .rows import COMPARISONS
+    out = []
+    by_table = {t["id"]: {r["id"]: r for r in t["rows"] if not r.get("skipped")} for t in doc["tables"]}
+    for c in COMPARISONS:
+        blocks = []
+        for tid in c.tables:
+            rows = [by_table.get(tid, {}).get(r) for r in c.rows]
+            shown = [r for r in rows if r]
+            if len(shown) < 2:
+                continue
+            blocks += [f"Table `{tid}`:", "", "| metric | " + " | ".join(r["label"] for r in shown) + " |",
+                       "|---|" + "---|" * len(shown)]
+            for m in c.metrics:
+                if any(m in r["values"] for r in shown):
+                    blocks.append(f"| {COLUMNS[m][0]}{f' ({COLUMNS[m][1]})' if COLUMNS[m][1] else ''} | "
+                                  + " | ".join(cell(r["values"].get(m), COLUMNS[m][1]) for r in shown) + " |")
+            blocks.append("")
+        if blocks:
+            out += [f"## Side by side: {c.text} ({c.paper})", ""] + blocks
+    return out
+
+
 def markdown(doc: dict) -> str:
     lines = ["# Results", "",
              "Written by `python -m export evaluate` from `configs/eval.json` and `export/eval/rows.py`; "
@@ -87,6 +111,8 @@ def markdown(doc: dict) -> str:
         nums = "<br>".join(_part_text(p) for p in c["parts"])
         lines.append(f"| {c['text']} | {c['paper']} | **{c['status']}** | {nums} |")
     lines.append("")
+
+    lines += _comparisons(doc)
 
     lines += ["## Sanity checks", "",
               "Each check can fail, and a failure is reported here rather than tuned away. A pose-based classifier "
@@ -116,11 +142,11 @@ def markdown(doc: dict) -> str:
                      f"{r['test_balanced_accuracy']:.1f} | "
                      + " | ".join(f"{g[k]['accuracy']:.1f}" if k in g else "—" for k in ("walker", "getup_faceup", "spin"))
                      + f" | {r['chance']:.1f} |")
-    for name, r in doc["classifiers"].items():
-        if r.get("motionless_class"):
-            lines += ["", f"A motionless snippet (zero velocity) is classified by {name} as **{r['motionless_class']}**; "
-                          "both classifiers have a class for no motion, trained on training poses held still, so a static "
-                          "future counts as not performing the requested action."]
+    lines += ["", "Both classifiers have a class for no motion, trained on training poses held still; a future "
+                  "classified as it counts as wrong for every action. What a held pose (the first training frame, "
+                  "still for a whole snippet) is classified as:", ""]
+    lines += [f"- {name}: **{r['motionless_class']}**" for name, r in doc["classifiers"].items()
+              if r.get("motionless_class")]
     lines += ["", "What the test snippets were classified as (snippet counts):", ""]
     for name, r in doc["classifiers"].items():
         lines.append(f"- {name}: " + "; ".join(

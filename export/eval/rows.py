@@ -119,3 +119,24 @@ CLAIMS: list[Claim] = [
           (Part("walker_5s", "keyposes-t0.3", "regression-gru", "acc_moac", "greater"),
            Part("walker_5s", "keyposes-t0.3", "zero-velocity", "acc_moac", "greater"))),
 ]
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Rows side by side on chosen columns, where a paper compares variants without a directional claim."""
+    id: str
+    paper: str
+    text: str
+    rows: tuple[str, ...]
+    metrics: tuple[str, ...]
+    tables: tuple[str, ...]
+
+
+COMPARISONS: list[Comparison] = [
+    Comparison("wat-rnn-vs-transformer", "WAT sec. 4.3, Tables 2-5",
+               "WAT's two temporal encoders on the same training strategy: transition smoothness, diversity, "
+               "recognisability and stopping (WAT reports the Transformer smoother and more diverse).",
+               ("wat-rnn", "wat-transformer", "wat-rnn-no-weak", "wat-transformer-no-weak"),
+               ("smooth", "div", "div_w", "acc_pose", "acc_moac", "stopped", "length"),
+               ("transitions", "in_sample")),
+]
