@@ -16,7 +16,8 @@ export interface FigureDraw {
 
 const BONE_RADIUS = 0.022;
 const JOINT_RADIUS = 0.034;
-const HEAD_RADIUS = 0.1;
+// A head about 0.16 m wide on this 1.46 m figure; 0.1 read as oversized next to the thin bones.
+const HEAD_RADIUS = 0.08;
 const SIDES: Side[] = ['left', 'right', 'mid'];
 const UP = new Vector3(0, 1, 0);
 
