@@ -4,16 +4,12 @@
 import { writeFile } from 'node:fs/promises';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
-import { openBrowser, type BrowserSession } from './browser';
+import type { BrowserSession } from './browser';
+import { NO_PROBLEMS, openPredictPage, predicted, settle, waiting } from './predict-page';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
-const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
 
-const predicted = (page: Page) =>
-  page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 120_000 });
-const waiting = (page: Page) => page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
-const settle = (page: Page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
 /** Mean over frames and joints of the spread between the K futures (metres). */
 const spread = (page: Page) => page.evaluate(() => {
@@ -54,10 +50,8 @@ describe('LCP-VAE and Keyposes in the browser', () => {
   let page: Page;
 
   beforeAll(async () => {
-    session = await openBrowser({ viewport: { width: 1400, height: 1000 } });
+    session = await openPredictPage(baseUrl);
     page = session.page;
-    await page.goto(baseUrl);
-    await page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]', { state: 'attached', timeout: 60_000 });
   });
   afterAll(async () => { await session?.close(); });
 

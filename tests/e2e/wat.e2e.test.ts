@@ -7,41 +7,25 @@ import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import type { Manifest } from '../../web/src/contract/types';
 import type { WatParams } from '../../web/src/predictor/wat';
-import { openBrowser, type BrowserSession } from './browser';
+import type { BrowserSession } from './browser';
+import { compose, failed, NO_PROBLEMS, openPredictPage, predicted, settle, waiting } from './predict-page';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
-const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
 const manifest: Manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
 const entry = manifest.models.find((m) => m.id === 'wat-rnn');
 if (!entry) throw new Error('public/models/manifest.json serves no wat-rnn model: run `python -m export models --only wat-rnn`');
 const params = entry.params as unknown as WatParams;
 const SEQUENCE = ['walk', 'punch', 'jump'];
 
-const predicted = (page: Page) =>
-  page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 120_000 });
-const failed = (page: Page) =>
-  page.waitForSelector('body[data-predict-status="error"]', { state: 'attached', timeout: 60_000 });
-const settle = (page: Page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-const waiting = (page: Page) => page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
-
-async function compose(page: Page, actions: string[]): Promise<void> {
-  await page.locator('.control-actions button', { hasText: 'Clear' }).click();
-  for (const a of actions) {
-    await page.locator('#control-actions-pick').selectOption(a);
-    await page.locator('.control-actions .add-action').click();
-  }
-}
 
 describe('WAT (RNN) in the browser', () => {
   let session: BrowserSession;
   let page: Page;
 
   beforeAll(async () => {
-    session = await openBrowser({ viewport: { width: 1400, height: 1000 } });
+    session = await openPredictPage(baseUrl);
     page = session.page;
-    await page.goto(baseUrl);
-    await page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]', { state: 'attached', timeout: 60_000 });
   });
   afterAll(async () => { await session?.close(); });
 
