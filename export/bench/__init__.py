@@ -29,6 +29,7 @@ ROOT = Path(__file__).resolve().parents[2]
 WORK_DIR = ROOT / "runs" / "bench"
 JSON_PATH = ROOT / "bench" / "results.json"
 MD_PATH = ROOT / "docs" / "PERFORMANCE.md"
+EARLIER_PATH = ROOT / "bench" / "earlier.json"   # earlier runs' summaries, one per change made from the benchmark
 
 
 def dist_sizes(dist: Path, largest: int = 6) -> dict:
@@ -62,15 +63,17 @@ def profile_summary(graph: str, events: list[dict], runs: int) -> dict:
 
 
 def machine(browser: dict, load_start: float) -> dict:
-    cpu = "unknown"
+    cpu, vector = "unknown", []
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
+            if line.startswith("model name") and cpu == "unknown":
                 cpu = line.split(":", 1)[1].strip()
-                break
+            if line.startswith("flags") and not vector:
+                flags = set(line.split(":", 1)[1].split())
+                vector = [f for f in ("sse4_2", "avx2", "fma", "avx512f") if f in flags]
     except OSError:
         pass
-    return {"cpu": cpu, "cores": os.cpu_count(), "os": f"{platform.system()} {platform.release()}",
+    return {"cpu": cpu, "vector": vector, "cores": os.cpu_count(), "os": f"{platform.system()} {platform.release()}",
             "chromium": browser.get("chromium"), "node": browser.get("node"),
             "onnxruntime_web": browser.get("onnxruntime_web"), "python": platform.python_version(),
             "onnxruntime": onnxruntime.__version__, "load_start": load_start, "load_end": os.getloadavg()[0]}
@@ -111,7 +114,8 @@ def bench(models_dir: Path = MODELS_DIR, runs: int = 20, warmup: int = 5, json_p
            "machine": machine(browser, load_start), "runs": runs, "warmup": warmup, "cases": cases, "sizes": sizes,
            "dist": dist, "native": native, "browser": browser, "profiles": profiles,
            "json_path": str(json_path.relative_to(ROOT)) if json_path.is_relative_to(ROOT) else str(json_path),
-           "notes": browser.get("notes", [])}
+           "notes": browser.get("notes", []),
+           "earlier": json.loads(EARLIER_PATH.read_text()) if EARLIER_PATH.exists() else []}
     doc["targets"] = targets(native, browser, sizes, dist, cases)
     doc["seconds"] = time.time() - t0
     json_path.parent.mkdir(parents=True, exist_ok=True)

@@ -1,6 +1,8 @@
 """The benchmark's numbers into targets and a markdown page: pure functions of the two sides' JSON."""
 from __future__ import annotations
 
+from collections import defaultdict
+
 import numpy as np
 
 # The targets of issue 9 on this machine (ms, MB = 10^6 bytes).
@@ -128,17 +130,24 @@ def analysis(doc: dict) -> list[str]:
                              f"{1e3 * nv / k:.1f} µs natively: per-node overhead (an unrolled recurrence; a fused "
                              "recurrent op or fewer, larger ops is the fix at export).")
     profiles = {p["graph"]: p for p in doc.get("profiles", [])}
+    flags = doc["machine"].get("vector", [])
+    vec = " + ".join(f.upper() for f in flags if f in ("avx2", "fma", "avx512f")) or "this CPU"
+    lanes = 4 if "avx512f" in flags else 2 if "avx2" in flags else 1   # 512 / 256 / 128-bit against wasm's 128
+    peak = lanes * (2 if "fma" in flags else 1)
     for g in timed:
         n = nat_graphs[g["id"]]
         nv = spread(n["native_ms"])["median"]
-        prof = profiles.get(g["id"])
-        if nodes(g) < 200 and nv >= 1 and ratio(g["ms"], n["native_ms"]) > MAX_RATIO and prof and prof["node_ms"] > 0:
+        prof = profiles.get(g["id"]) or next((p for gid, p in profiles.items()
+                                              if gid.rsplit("/", 1)[0] == g["id"].rsplit("/", 1)[0]), None)
+        if nodes(g) < 200 and nv >= 0.3 and ratio(g["ms"], n["native_ms"]) > MAX_RATIO and prof and prof["node_ms"] > 0:
             top = list(prof["op_ms"].items())[:3]
             share = sum(ms for _, ms in top) / prof["node_ms"]
             lines.append(f"{g['id']}: {nodes(g)} nodes and {nv:.1f} ms natively, so not per-node overhead; "
                          f"{', '.join(op for op, _ in top)} take {100 * share:.0f}% of the profiled node time: "
-                         "arithmetic, where onnxruntime-web's wasm SIMD (128-bit) kernels stand against native "
-                         "kernels with wider vectors.")
+                         "arithmetic, where onnxruntime-web's wasm SIMD kernels (128-bit, no fused multiply-add) "
+                         f"stand against native kernels on {vec}: {lanes}x the lanes"
+                         f"{' and fused multiply-adds' if 'fma' in flags else ''}, so up to {peak}x the arithmetic "
+                         "per instruction.")
     for c in br["cases"]:
         if not c["id"].endswith("/k10"):
             continue
@@ -165,6 +174,47 @@ def analysis(doc: dict) -> list[str]:
     return [line for line in lines if line]
 
 
+def summary(doc: dict) -> dict:
+    """Per model: the numbers a change to the served graphs is judged by (medians, ms)."""
+    br, nat = doc["browser"], doc["native"]
+    out: dict[str, dict] = defaultdict(dict)
+    for s in doc["sizes"]:
+        out[s["model"]].update(nodes=sum(g["nodes"] for g in s["graphs"].values()), gzip_bytes=s["onnx_gzip_bytes"])
+    for mid, ms in nat["load_ms"].items():
+        out[mid]["native_load_ms"] = ms
+    for mid, v in br["load"].items():
+        out[mid]["browser_load_ms"] = spread(v["round_trip_ms"])["median"]
+    for c in br["cases"]:
+        if c["id"].endswith("/k10"):
+            out[c["id"].split("/")[0]]["k10_worker_ms"] = spread(c["worker_ms"])["median"]
+    for n in br["navigation"]:
+        if n.get("first_prediction_ms"):
+            out[n["model"]]["first_prediction_ms"] = spread(n["first_prediction_ms"])["median"]
+    return dict(out)
+
+
+def changes(doc: dict) -> list[str]:
+    """Each recorded change (bench/earlier.json) against this run: what it changed, in numbers."""
+    now = summary(doc)
+    cols = [("nodes", "nodes", 0), ("gzip_bytes", "ONNX gz (kB)", -3), ("native_load_ms", "native session (ms)", 0),
+            ("browser_load_ms", "browser load (ms)", 0), ("k10_worker_ms", "K=10 in worker (ms)", 1),
+            ("first_prediction_ms", "first prediction (ms)", 0)]
+
+    def cell(a, b, digits):
+        if a is None or b is None:
+            return "—"
+        scale = 1e-3 if digits < 0 else 1
+        d = max(digits, 0)
+        return f"{a * scale:.{d}f} → {b * scale:.{d}f}"
+    out = []
+    for e in doc.get("earlier", []):
+        out += [f"### {e['change']}", "", f"Earlier run: {e['date']}. {e['note']}", ""]
+        rows = [[mid] + [cell(before.get(k), now.get(mid, {}).get(k), d) for k, _, d in cols]
+                for mid, before in e["summary"].items()]
+        out += [table(["model"] + [label for _, label, _ in cols], rows), ""]
+    return out
+
+
 def markdown(doc: dict) -> str:
     m, nat, br = doc["machine"], doc["native"], doc["browser"]
     sizes = {s["model"]: s for s in doc["sizes"]}
@@ -176,7 +226,7 @@ def markdown(doc: dict) -> str:
            f"{doc['runs']} runs after {doc['warmup']} warm-up runs, unless said otherwise. Raw numbers: "
            f"`{doc['json_path']}`.", "",
            "## Machine", "",
-           f"- CPU: {m['cpu']}, {m['cores']} cores; {m['os']}",
+           f"- CPU: {m['cpu']}, {m['cores']} cores ({', '.join(m.get('vector') or ['vector extensions unknown'])}); {m['os']}",
            f"- Browser: {m['chromium']} (headless, software WebGL), onnxruntime-web {m['onnxruntime_web']} "
            "(wasm, 1 thread, graph optimisation 'all')",
            f"- Node {m['node']}; Python {m['python']}, onnxruntime {m['onnxruntime']} (1 thread)",
@@ -251,6 +301,8 @@ def markdown(doc: dict) -> str:
     out += [table(["graph/batch", "attempt", "nodes", "browser session load", "browser run", "native run", "ratio",
                    "rel. diff"], rows), ""]
 
+    def num(v, digits=0):
+        return "—" if v is None else f"{v:.{digits}f}"
     out += ["## Page", "",
             "First prediction on screen: from navigation start to `data-predict-status=done` on the main page "
             "(`?model=ID`, a fresh profile each time, default controls). Frame gaps: the longest interval between "
@@ -264,8 +316,16 @@ def markdown(doc: dict) -> str:
             "Requests are counted until the first prediction is shown. The page fetches only the chosen model's "
             "files; the offline service worker (web/src/embed/offline.ts registers it after the first prediction) "
             "then precaches the whole site, every model included, in the background.", ""]
-    def num(v, digits=0):
-        return "—" if v is None else f"{v:.{digits}f}"
+    stages = ["DOMContentLoaded", "last script fetched", "manifest fetched", "last clip file fetched", "wasm fetched",
+              "last ONNX fetched"]
+    if any(n.get("timeline_ms") for n in br["navigation"]):
+        rows = [[n["model"]] + [num(spread(n["timeline_ms"][k])["median"]) if n.get("timeline_ms", {}).get(k) else "—"
+                                for k in stages] + [num(spread(n["first_prediction_ms"])["median"]) if n.get("first_prediction_ms") else "—"]
+                for n in br["navigation"]]
+        out += ["Where the time to the first prediction goes (ms after navigation start, medians; a file counts when its "
+                "response has ended, whether the page or the predictor worker fetched it). What follows the last file is "
+                "wasm compilation, session creation, the prediction and drawing it.", "",
+                table(["model"] + stages + ["first prediction"], rows), ""]
     rows = [[f["model"], str(f["k"]), num(f.get("idle_max_gap_ms")),
              num(f.get("max_gap_ms")) if f.get("error") is None else f"error: {f['error']}",
              num(f.get("prediction_ms")), num(f.get("fps"), 1), num(f.get("playing_idle_max_gap_ms")),
@@ -289,6 +349,11 @@ def markdown(doc: dict) -> str:
         rows.append([s["model"], f"**all ({cap})**", f"{s['onnx_bytes'] / 1e3:.0f}", f"{s['onnx_gzip_bytes'] / 1e3:.0f}",
                      f"{s['params']:,}", ""])
     out += [table(["model", "ONNX file", "kB", "kB gzipped", "parameters", "nodes"], rows), ""]
+
+    if doc.get("earlier"):
+        out += ["## Changes made from this benchmark", "",
+                "Each change to the served graphs, measured: an earlier run's medians (bench/earlier.json) → this run's.", ""]
+        out += changes(doc)
 
     missed = [t for t in doc["targets"] if t["met"] is False]
     if missed:

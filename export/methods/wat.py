@@ -15,7 +15,7 @@ from torch import nn
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.windows import windows
-from ..models.wat import DecoderGraph, PriorGraph, WatRNN, kl_divergence
+from ..models.wat import DecoderGraph, PriorGraph, RolloutDecoderGraph, WatRNN, kl_divergence
 from ..ops.dct_smoothness import smoothness, smoothness_loss
 from ..ops.transitions import build_bank, cached_repeats, transition_rate
 from ..ops.variance_stop import variance_curve
@@ -146,12 +146,14 @@ class WatMethod(Method):
         n, t, d, a = self.history_frames, self.future_frames, model.latent, len(self.actions)
         history, action = self._examples()
         features = model.prior_params(history, action)[2].shape[-1]
+        # The RNN's recurrence is written as fused GRU nodes (export/onnx/rollout.py).
+        decoder = RolloutDecoderGraph(model) if isinstance(model, WatRNN) else DecoderGraph(model)
         return {
             "prior": GraphDef(PriorGraph(model), (history, action),
                               [TensorSpec("history", ["batch", n, J, 3]), TensorSpec("action", ["batch", a])],
                               [TensorSpec("prior_mean", ["batch", d]), TensorSpec("prior_logvar", ["batch", d]),
                                TensorSpec("history_features", ["batch", features])]),
-            "decoder": GraphDef(DecoderGraph(model), (torch.randn(2, d), history, action),
+            "decoder": GraphDef(decoder, (torch.randn(2, d), history, action),
                                 [TensorSpec("z", ["batch", d]), TensorSpec("history", ["batch", n, J, 3]),
                                  TensorSpec("action", ["batch", a])],
                                 [TensorSpec("future", ["batch", t, J, 3])]),

@@ -14,6 +14,8 @@ import torch
 from torch import nn
 from torch.nn import functional as F
 
+from .gru_rollout import GruRollout, RolloutGraph
+
 VARIANTS = {"lcp": 4, "cvae_h": 2, "cvae_zc": 3}   # variant -> row of Table 4
 # sigma > 0 strictly: the KLs of Eqs. 5-6 take log sigma.
 SIGMA_FLOOR = 1e-4
@@ -61,7 +63,8 @@ class StateDecoder(nn.Module):
 class PoseDecoder(nn.Module):
     """DecodeCondition / DecodeData: an autoregressive GRU from a state and a seed pose.
 
-    The loop is plain Python, so it unrolls when exported. Each step predicts a change of the
+    The loop is plain Python; the exported graph writes it as one fused GRU node per step
+    (`LcpVae.rollout`). Each step predicts a change of the
     pose fed in (a residual) rather than the pose itself (appendix C maps the GRU output to the
     pose): the first future frame then starts at the last observed pose instead of jumping.
     """
@@ -148,6 +151,19 @@ class LcpVae(nn.Module):
         seed = (last_pose.flatten(1) - self.pose_mean) / self.pose_std
         return self.decode_data(self.lcp_decode(code), seed, self.future_frames, target, teacher_forcing)
 
+    def rollout_setup(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
+        """The data decoder's start for the exported rollout: (last pose [B, P] metres, its state)."""
+        return last_pose.flatten(1), self.lcp_decode(z if c is None else torch.cat([z, c], -1))
+
+    def rollout(self) -> GruRollout:
+        """DecodeData's step with the normalisation folded into the weights (raw metres)."""
+        cell, out = self.decode_data.cell, self.decode_data.out
+        w_in = cell.weight_ih / self.pose_std
+        return GruRollout(w_input=w_in, b_input=cell.bias_ih - w_in @ self.pose_mean,
+                          w_hidden=cell.weight_hh, b_hidden=cell.bias_hh,
+                          w_out=out.weight * self.pose_std[:, None], b_out=out.bias * self.pose_std,
+                          steps=self.future_frames, frame_shape=(self.joints, 3))
+
     def forward(self, history: torch.Tensor, future: torch.Tensor, teacher_forcing: float = 0.0) -> dict:
         """A training pass (Algorithms 1 and 2): reconstructions and posterior parameters."""
         x_hist, x_fut = self.normalise(history), self.normalise(future)
@@ -191,8 +207,9 @@ class ConditionGraph(nn.Module):
         return tuple(cond[name] for name in self.outputs)
 
 
-class DecoderGraph(nn.Module):
-    """Exported: (z, last pose[, c]) -> future [B, T, J, 3] metres, fully autoregressive."""
+class DecoderGraph(RolloutGraph):
+    """Exported: (z, last pose[, c]) -> future [B, T, J, 3] metres, fully autoregressive; the
+    recurrence is written as fused GRU nodes (export/onnx/rollout.py)."""
 
     def __init__(self, model: LcpVae):
         super().__init__()
@@ -200,3 +217,9 @@ class DecoderGraph(nn.Module):
 
     def forward(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
         return self.model.denormalise(self.model.decode(z, last_pose, c))
+
+    def setup(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
+        return self.model.rollout_setup(z, last_pose, c)
+
+    def rollout(self) -> GruRollout:
+        return self.model.rollout()

@@ -13,6 +13,8 @@ from __future__ import annotations
 import torch
 from torch import nn
 
+from .gru_rollout import GruRollout, RolloutGraph
+
 # Log-variances are clamped so exp(logvar / 2) stays finite in float32 in both runtimes.
 LOGVAR_MIN, LOGVAR_MAX = -12.0, 6.0
 
@@ -174,7 +176,8 @@ class WatRNN(WatCVAE):
         w_step = torch.cat([w_pose @ w_out, self.gate_hidden.weight], 0)      # h_{t-1} -> [pose gates, hidden gates]
         b_step = torch.cat([b_out @ w_pose.t(), self.gate_hidden.bias])
         states, acc = [], None
-        # Unrolled in Python: the exported graph has T_max steps and no Loop operator.
+        # Unrolled in Python for training; the exported graph writes the same T_max steps as fused GRU
+        # nodes (`rollout`, export/onnx/rollout.py), with no Loop operator.
         for t in range(self.max_frames):
             if t == 0:
                 gi = first
@@ -189,6 +192,23 @@ class WatRNN(WatCVAE):
         out = b_out + torch.stack(states, 1) @ w_out.t()
         frames = x_last[:, None] + (out.cumsum(1) if self.residual else out)
         return frames.reshape(b, self.max_frames, self.joints, 3)
+
+    def rollout_setup(self, z, history, action):
+        """The decoder's start for the exported rollout: (x_N [B, K], h_0, c = [h_x, a, z])."""
+        c = torch.cat([self.encode_history(self.normalise(history)), self.action_embed(action), z], -1)
+        return history[:, -1].flatten(1), torch.tanh(self.decoder_init(c)), c
+
+    def rollout(self) -> GruRollout:
+        """`decode_reference`'s step with the normalisation folded into the weights (raw metres)."""
+        mean, std = self.pose_mean[0, 0], self.pose_std[0, 0]
+        scale = (self.step_std if self.residual else self.offset_std)[0, 0]
+        w_pose = self.gate_pose.weight / std
+        return GruRollout(
+            w_input=torch.cat([self.gate_condition.weight, w_pose], 1),
+            b_input=self.gate_condition.bias - mean @ w_pose.t(),
+            w_hidden=self.gate_hidden.weight, b_hidden=self.gate_hidden.bias,
+            w_out=self.decoder_out.weight * scale[:, None], b_out=self.decoder_out.bias * scale,
+            steps=self.max_frames, frame_shape=(self.joints, 3), residual=self.residual)
 
 
 class PriorGraph(nn.Module):
@@ -211,3 +231,13 @@ class DecoderGraph(nn.Module):
 
     def forward(self, z, history, action):
         return self.model.decode_from(z, history, action)
+
+
+class RolloutDecoderGraph(DecoderGraph, RolloutGraph):
+    """WatRNN's decoder graph, exported with one fused GRU node per step."""
+
+    def setup(self, z, history, action):
+        return self.model.rollout_setup(z, history, action)
+
+    def rollout(self) -> GruRollout:
+        return self.model.rollout()

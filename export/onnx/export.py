@@ -7,6 +7,7 @@ before the file is written, and `check_parity` runs the stripped file.
 from __future__ import annotations
 
 import hashlib
+import inspect
 import logging
 import warnings
 from pathlib import Path
@@ -17,6 +18,8 @@ import onnxruntime as ort
 import torch
 
 from ..methods.base import GraphDef
+from ..models.gru_rollout import RolloutGraph, RolloutSetup
+from .rollout import append_rollout
 
 OPSET = 18
 logging.getLogger("torch.onnx").setLevel(logging.ERROR)  # e.g. "torchvision is not installed"
@@ -52,18 +55,38 @@ def _all_nodes(model: onnx.ModelProto):
                     stack.extend(attr.graphs)
 
 
-def to_onnx(graph: GraphDef) -> bytes:
-    """Export, strip and serialise one graph with a dynamic batch axis on every tensor."""
-    module = graph.module.eval()
+def _torch_export(module: torch.nn.Module, example_inputs: tuple, input_names: list[str],
+                  output_names: list[str]) -> onnx.ModelProto:
     batch = torch.export.Dim("batch", min=1, max=1024)
-    dynamic = {spec.name: {0: batch} for spec, _ in zip(graph.inputs, graph.example_inputs)}
     with warnings.catch_warnings(), torch.no_grad():
         warnings.simplefilter("ignore")
         program = torch.onnx.export(
-            module, graph.example_inputs, input_names=[s.name for s in graph.inputs],
-            output_names=[s.name for s in graph.outputs], dynamic_shapes=tuple(dynamic[s.name] for s in graph.inputs),
+            module, example_inputs, input_names=input_names, output_names=output_names,
+            dynamic_shapes=_batch_axes(module, batch, len(input_names)),
             opset_version=OPSET, dynamo=True, external_data=False, verbose=False, optimize=True)
-    model = _strip(program.model_proto)
+    return program.model_proto
+
+
+def _batch_axes(module: torch.nn.Module, batch, count: int) -> tuple:
+    """Axis 0 of every input is the batch; a forward(*inputs) takes them as one nested tuple."""
+    axes = tuple({0: batch} for _ in range(count))
+    params = inspect.signature(module.forward).parameters.values()
+    return (axes,) if any(p.kind is p.VAR_POSITIONAL for p in params) else axes
+
+
+def to_onnx(graph: GraphDef) -> bytes:
+    """Export, strip and serialise one graph with a dynamic batch axis on every tensor. A
+    RolloutGraph is exported as its setup, then its GRU recurrence is written as fused nodes."""
+    module = graph.module.eval()
+    inputs = [s.name for s in graph.inputs]
+    if isinstance(module, RolloutGraph):
+        rollout = module.rollout()
+        setup_outputs = ["setup_seed", "setup_h0"] + (["setup_context"] if rollout.context_size else [])
+        model = _torch_export(RolloutSetup(module), graph.example_inputs, inputs, setup_outputs)
+        model = append_rollout(model, rollout, graph.outputs[0].name)
+    else:
+        model = _torch_export(module, graph.example_inputs, inputs, [s.name for s in graph.outputs])
+    model = _strip(model)
     onnx.checker.check_model(model, full_check=True)
     return model.SerializeToString()
 

@@ -6,7 +6,7 @@ from onnx import TensorProto, helper, numpy_helper
 
 from export.bench import dist_sizes, profile_summary
 from export.bench.native import cap_mb, graph_facts, plan, rel_diff
-from export.bench.report import ratio, spread, table
+from export.bench.report import changes, ratio, spread, summary, table
 
 ACTIONS = ["walk", "run", "jump"]
 
@@ -87,3 +87,19 @@ def test_table_checks_row_width_and_dist_sizes_sum_files(tmp_path):
     assert d["files"] == 2 and d["bytes"] == 1256 and d["largest"][0]["file"] == "b.bin"
     with pytest.raises(FileNotFoundError, match="no built site"):
         dist_sizes(tmp_path / "empty")
+
+
+def test_a_recorded_change_is_reported_as_earlier_to_now_medians():
+    def run(first_ms, nodes):
+        return {"sizes": [{"model": "m", "onnx_gzip_bytes": 200_000, "graphs": {"decoder": {"nodes": nodes}}}],
+                "native": {"load_ms": {"m": 3.0}},
+                "browser": {"load": {"m": {"round_trip_ms": [10.0, 12.0, 14.0]}},
+                            "cases": [{"id": "m/k10", "worker_ms": [5.0, 6.0, 7.0]}, {"id": "m/k1", "worker_ms": [1.0]}],
+                            "navigation": [{"model": "m", "first_prediction_ms": first_ms}]}}
+    before = summary(run([4000.0, 4100.0, 4200.0], 1800))
+    assert before["m"] == {"nodes": 1800, "gzip_bytes": 200_000, "native_load_ms": 3.0, "browser_load_ms": 12.0,
+                           "k10_worker_ms": 6.0, "first_prediction_ms": 4100.0}
+    now = run([2000.0, 2100.0], 450) | {"earlier": [{"date": "d", "change": "fused", "note": "n.", "summary": before}]}
+    text = "\n".join(changes(now))
+    assert "### fused" in text
+    assert "| m | 1800 → 450 | 200 → 200 | 3 → 3 | 12 → 12 | 6.0 → 6.0 | 4100 → 2050 |" in text

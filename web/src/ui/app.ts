@@ -271,6 +271,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     }
     await predictor.start(asked?.model);
     if (asked) predictor.setInputs(asked);
+    if (options.autoPredict) predictor.warm();
     return asked;
   };
 

@@ -100,6 +100,16 @@ export class PredictController {
     this.o.status('predictStatus', 'idle');
   }
 
+  /** Start loading the chosen model while the clip loads, when a prediction follows at once: the
+   * worker's wasm start-up and session creation then overlap the page's own loading. */
+  warm(): void {
+    if (!this.inputs || !this.manifest) return;
+    const entry = this.inputs.model();
+    this.client ??= this.o.client(this.manifest);
+    // A failed load is not reported here: the prediction that follows loads again and reports it.
+    void this.client.load(entry.id).then(() => { this.loaded.add(entry.id); }, () => undefined);
+  }
+
   /** The current inputs, or null before the manifest is in. */
   inputsNow(): PredictInputs | null {
     if (!this.inputs) return null;
