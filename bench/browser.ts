@@ -117,11 +117,23 @@ function watchDone(): void {
   }).observe(document, { attributes: true, subtree: true, attributeFilter: ['data-predict-status'] });
 }
 
-async function navigation(s: Served, plan: Plan) {
+/** What a request is, on the way to the first prediction (null: not tracked). */
+function stage(url: string): string | null {
+  const path = new URL(url).pathname;
+  if (path.endsWith('.wasm')) return 'wasm fetched';
+  if (path.endsWith('.onnx')) return 'last ONNX fetched';
+  if (path.endsWith('/manifest.json')) return 'manifest fetched';
+  if (/\/clips\/.+\.json$/.test(path)) return 'last clip file fetched';
+  if (path.endsWith('.js') && path.includes('/assets/')) return 'last script fetched';
+  return null;
+}
+
+export async function navigation(s: Served, plan: Pick<Plan, 'models'>) {
   const out = [];
   for (const m of plan.models) {
     const first: number[] = [];
     const requests = { page: new Set<string>(), service_worker: new Set<string>() };
+    const timeline: Record<string, number[]> = {};
     let error: string | undefined;
     for (let i = 0; i < NAV_REPEATS; i++) {
       const b = await openBrowser(); // a fresh profile: nothing cached, no service worker yet
@@ -130,10 +142,26 @@ async function navigation(s: Served, plan: Plan) {
           if (!r.url().endsWith('.onnx')) return;
           (r.serviceWorker() ? requests.service_worker : requests.page).add(r.url());
         });
+        // When each kind of file finished loading (page and worker; epoch ms from the request's timing).
+        const loaded: { kind: string; end: number }[] = [];
+        b.context.on('requestfinished', (r) => {
+          const kind = stage(r.url());
+          const t = r.timing();
+          if (kind && !r.serviceWorker() && t.responseEnd >= 0) loaded.push({ kind, end: t.startTime + t.responseEnd });
+        });
         await b.page.addInitScript(watchDone);
         await b.page.goto(`${s.url}?model=${encodeURIComponent(m.id)}`);
         await b.page.waitForFunction(() => (window as unknown as { __mfDone?: number }).__mfDone !== undefined, null, { timeout: 60_000 });
-        first.push(await b.page.evaluate(() => (window as unknown as { __mfDone: number }).__mfDone));
+        const done = await b.page.evaluate(() => (window as unknown as { __mfDone: number }).__mfDone);
+        first.push(done);
+        const [origin, dcl, marks] = await b.page.evaluate(() => [performance.timeOrigin,
+          (performance.getEntriesByType('navigation')[0] as PerformanceNavigationTiming).domContentLoadedEventEnd,
+          performance.getEntriesByType('mark').filter((e) => e.name.startsWith('mf:')).map((e) => [e.name.slice(3), e.startTime] as const)] as const);
+        const finished: Record<string, number> = { DOMContentLoaded: dcl, ...Object.fromEntries(marks) };
+        for (const { kind, end } of loaded) {
+          if (end - origin <= done) finished[kind] = Math.max(finished[kind] ?? 0, end - origin);
+        }
+        for (const [kind, ms] of Object.entries(finished)) (timeline[kind] ??= []).push(ms);
       } catch (err) {
         error = (err as Error).message.split('\n')[0];
       } finally {
@@ -141,7 +169,7 @@ async function navigation(s: Served, plan: Plan) {
       }
     }
     log(`navigation ${m.id}: ${first.map((x) => x.toFixed(0)).join(', ')} ms`);
-    out.push({ model: m.id, own_files: m.files, first_prediction_ms: first, error,
+    out.push({ model: m.id, own_files: m.files, first_prediction_ms: first, timeline_ms: timeline, error,
       onnx_requests: { page: [...requests.page], service_worker: [...requests.service_worker] } });
   }
   return out;

@@ -231,7 +231,8 @@ def markdown(doc: dict) -> str:
            "(wasm, 1 thread, graph optimisation 'all')",
            f"- Node {m['node']}; Python {m['python']}, onnxruntime {m['onnxruntime']} (1 thread)",
            f"- Run: {doc['date']}, {doc['seconds']:.0f} s in all; load average (1 min) {m['load_start']:.1f} at the "
-           f"start, {m['load_end']:.1f} at the end (other work shared the 2 cores: spreads are wide)", "",
+           f"start, {m['load_end']:.1f} at the end (the benchmark's own browser and server count)"
+           + (" (other work shared the cores at the start: spreads are wider)" if m["load_start"] >= 1.0 else ""), "",
            "## Targets", ""]
     rows = []
     for t in doc["targets"]:
@@ -316,15 +317,19 @@ def markdown(doc: dict) -> str:
             "Requests are counted until the first prediction is shown. The page fetches only the chosen model's "
             "files; the offline service worker (web/src/embed/offline.ts registers it after the first prediction) "
             "then precaches the whole site, every model included, in the background.", ""]
-    stages = ["DOMContentLoaded", "last script fetched", "manifest fetched", "last clip file fetched", "wasm fetched",
-              "last ONNX fetched"]
+    # Files: when their response ended; "model-loaded" and the rest: the page's performance marks.
+    stages = ["DOMContentLoaded", "last script fetched", "manifest fetched", "last clip file fetched", "last ONNX fetched",
+              "wasm fetched", "model-loaded", "predict-asked", "prediction-received"]
     if any(n.get("timeline_ms") for n in br["navigation"]):
         rows = [[n["model"]] + [num(spread(n["timeline_ms"][k])["median"]) if n.get("timeline_ms", {}).get(k) else "—"
                                 for k in stages] + [num(spread(n["first_prediction_ms"])["median"]) if n.get("first_prediction_ms") else "—"]
                 for n in br["navigation"]]
         out += ["Where the time to the first prediction goes (ms after navigation start, medians; a file counts when its "
-                "response has ended, whether the page or the predictor worker fetched it). What follows the last file is "
-                "wasm compilation, session creation, the prediction and drawing it.", "",
+                "response has ended, whether the page or the predictor worker fetched it; the worker fetches the wasm "
+                "when it creates its first session). model-loaded: the worker has every session of the model "
+                "(the page starts that load as soon as the manifest is in); predict-asked: the page has the clip and "
+                "the model and sends the prediction; prediction-received: the futures are back on the page; first "
+                "prediction: they are on screen.", "",
                 table(["model"] + stages + ["first prediction"], rows), ""]
     rows = [[f["model"], str(f["k"]), num(f.get("idle_max_gap_ms")),
              num(f.get("max_gap_ms")) if f.get("error") is None else f"error: {f['error']}",
@@ -366,17 +371,18 @@ def markdown(doc: dict) -> str:
                     out.append(f"- {i['what']}{v}")
             out.append("")
         out += ["What the numbers say:", ""] + [f"- {line}" for line in analysis(doc)] + [""]
-        out += ["Node counts and op types of every served graph (what onnxruntime-web pays per node):", ""]
-        rows = [[s["model"], role, str(g["nodes"]), ", ".join(f"{op} {n}" for op, n in list(g["ops"].items())[:8])]
-                for s in doc["sizes"] for role, g in s["graphs"].items()]
-        out += [table(["model", "graph", "nodes", "op types (most frequent first)"], rows), ""]
-        if doc.get("profiles"):
-            out += ["Browser profile (onnxruntime-web per-node events, mean of 3 runs per graph at the K=10 batch; time per op "
-                    "type). Profiling adds a cost to every node, so the run times here are longer than above; the "
-                    "split over op types is what it shows.", ""]
-            rows = [[p["graph"], ", ".join(f"{op} {ms:.2f} ms" for op, ms in list(p["op_ms"].items())[:6]),
-                     f"{p['node_ms']:.2f}", f"{p['run_ms']:.2f}"] for p in doc["profiles"]]
-            out += [table(["graph/batch", "op types by time", "sum of node times (ms)", "run (ms)"], rows), ""]
+    out += ["## Profile", ""]
+    out += ["Node counts and op types of every served graph (what onnxruntime-web pays per node):", ""]
+    rows = [[s["model"], role, str(g["nodes"]), ", ".join(f"{op} {n}" for op, n in list(g["ops"].items())[:8])]
+            for s in doc["sizes"] for role, g in s["graphs"].items()]
+    out += [table(["model", "graph", "nodes", "op types (most frequent first)"], rows), ""]
+    if doc.get("profiles"):
+        out += ["Browser profile (onnxruntime-web per-node events, mean of 3 runs per graph at the K=10 batch; time per op "
+                "type). Profiling adds a cost to every node, so the run times here are longer than above; the "
+                "split over op types is what it shows.", ""]
+        rows = [[p["graph"], ", ".join(f"{op} {ms:.2f} ms" for op, ms in list(p["op_ms"].items())[:6]),
+                 f"{p['node_ms']:.2f}", f"{p['run_ms']:.2f}"] for p in doc["profiles"]]
+        out += [table(["graph/batch", "op types by time", "sum of node times (ms)", "run (ms)"], rows), ""]
     if doc.get("notes"):
         out += ["## Notes", ""] + [f"- {n}" for n in doc["notes"]] + [""]
     return "\n".join(out)

@@ -30,6 +30,10 @@ describe('predicting in the browser', () => {
     expect(await page.locator('#history-start').inputValue()).toBe('0');
     expect(await page.locator('.history-note').textContent()).toMatch(/test part/);
     expect(await page.locator('.sample-item').count()).toBeGreaterThan(0);
+    // The page loaded the model on its own as soon as the manifest was in (PredictController.warm).
+    const marks = await page.evaluate(() => Object.fromEntries(performance.getEntriesByType('mark').map((m) => [m.name, m.startTime])));
+    expect(marks['mf:model-loaded']).toBeGreaterThan(0);
+    expect(marks['mf:model-loaded']).toBeLessThanOrEqual(marks['mf:prediction-received']);
   });
 
   it('the regression baseline predicts from a walker history, shown beside the ground truth', async () => {

@@ -11,10 +11,14 @@ export type { GraphTiming };
 
 export class OrtRunner implements GraphRunner {
   private sessions = new Map<string, Promise<Ort.InferenceSession>>();
+  private readonly ort: Promise<OrtModule>;
 
-  /** `onRun` receives each session.run's timing (the worker returns them with the result; bench/ reads them). */
-  constructor(private readonly ort: OrtModule, private readonly entry: ModelEntry, private readonly load: FileLoader,
-    private readonly onRun?: (t: GraphTiming) => void) {}
+  /** `onRun` receives each session.run's timing (the worker returns them with the result; bench/ reads them).
+   * `ort` may still be loading: the model files are fetched meanwhile (a shorter first prediction). */
+  constructor(ort: OrtModule | Promise<OrtModule>, private readonly entry: ModelEntry, private readonly load: FileLoader,
+    private readonly onRun?: (t: GraphTiming) => void) {
+    this.ort = Promise.resolve(ort);
+  }
 
   /** Create every graph's session now (lazily per model: called when a model is first used). */
   async loadAll(onProgress?: (loaded: number, total: number) => void): Promise<void> {
@@ -30,7 +34,7 @@ export class OrtRunner implements GraphRunner {
     if (!s) {
       const spec = this.entry.graphs[role];
       if (!spec) throw new Error(`model ${this.entry.id} has no graph '${role}'`);
-      s = this.load(spec.file, onProgress).then((bytes) => this.ort.InferenceSession.create(bytes, {
+      s = Promise.all([this.load(spec.file, onProgress), this.ort]).then(([bytes, ort]) => ort.InferenceSession.create(bytes, {
         executionProviders: ['wasm'], graphOptimizationLevel: 'all',
       }));
       s.catch(() => this.sessions.delete(role)); // a failed load may be retried
@@ -41,8 +45,9 @@ export class OrtRunner implements GraphRunner {
 
   async run(role: string, feeds: Record<string, Tensor>): Promise<Record<string, Tensor>> {
     const session = await this.session(role);
+    const ort = await this.ort;
     const inputs: Record<string, Ort.Tensor> = {};
-    for (const [name, t] of Object.entries(feeds)) inputs[name] = new this.ort.Tensor('float32', t.data, t.dims);
+    for (const [name, t] of Object.entries(feeds)) inputs[name] = new ort.Tensor('float32', t.data, t.dims);
     const t0 = performance.now();
     const out = await session.run(inputs);
     this.onRun?.({ role, batch: Object.values(feeds)[0]?.dims[0] ?? 0, ms: performance.now() - t0 });

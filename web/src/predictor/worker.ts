@@ -68,7 +68,7 @@ async function predictorFor(model: string, id: number): Promise<{ predictor: Pre
     if (!manifest) throw new Error('the worker has no manifest yet');
     const entry = manifest.models.find((m) => m.id === model);
     if (!entry) throw new PredictError(`unknown model '${model}'`);
-    const runner = new OrtRunner(await runtime(), entry, fetchBytes, (t) => timings.push(t));
+    const runner = new OrtRunner(runtime(), entry, fetchBytes, (t) => timings.push(t));
     await runner.loadAll((loaded, total) => post({ type: 'progress', id, model, loaded, total }));
     const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: fetchBytes });
     p = { predictor, runner };

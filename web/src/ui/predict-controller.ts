@@ -105,9 +105,14 @@ export class PredictController {
   warm(): void {
     if (!this.inputs || !this.manifest) return;
     const entry = this.inputs.model();
-    this.client ??= this.o.client(this.manifest);
-    // A failed load is not reported here: the prediction that follows loads again and reports it.
-    void this.client.load(entry.id).then(() => { this.loaded.add(entry.id); }, () => undefined);
+    // Nothing is reported here (no worker, a failed load): the prediction that follows tries again
+    // and reports it.
+    try {
+      this.client ??= this.o.client(this.manifest);
+    } catch {
+      return;
+    }
+    void this.client.load(entry.id).then(() => { this.loaded.add(entry.id); performance.mark('mf:model-loaded'); }, () => undefined);
   }
 
   /** The current inputs, or null before the manifest is in. */
@@ -163,9 +168,11 @@ export class PredictController {
       this.client ??= this.o.client(this.manifest);
       const loading = !this.loaded.has(entry.id);
       this.inputs.setBusy(loading ? `Loading ${entry.label}…` : 'Predicting…', loading ? 0 : undefined);
+      performance.mark('mf:predict-asked'); // marks: the benchmark's first-prediction timeline
       const { prediction, ms } = await this.client.predict(this.o.viewId, entry.id, history, request,
         (loaded, total) => this.inputs?.setBusy(`Loading ${entry.label}… ${(loaded / 1e6).toFixed(1)} MB`, total ? loaded / total : undefined));
       this.loaded.add(entry.id);
+      performance.mark('mf:prediction-received');
       if (this.o.currentClip() !== m) { this.inputs.setBusy(null); return; } // the user moved on to another clip
       this.show(m, start, n, prediction, ms, entry);
     } catch (err) {
