@@ -128,7 +128,7 @@ function stage(url: string): string | null {
   return null;
 }
 
-export async function navigation(s: Served, plan: Pick<Plan, 'models'>) {
+async function navigation(s: Served, plan: Plan) {
   const out = [];
   for (const m of plan.models) {
     const first: number[] = [];

@@ -196,22 +196,19 @@ def summary(doc: dict) -> dict:
 def changes(doc: dict) -> list[str]:
     """Each recorded change (bench/earlier.json) against this run: what it changed, in numbers."""
     now = summary(doc)
-    cols = [("nodes", "nodes", 0), ("gzip_bytes", "ONNX gz (kB)", -3), ("native_load_ms", "native session (ms)", 0),
-            ("browser_load_ms", "browser load (ms)", 0), ("k10_worker_ms", "K=10 in worker (ms)", 1),
-            ("first_prediction_ms", "first prediction (ms)", 0)]
+    # (summary key, column label, unit scale, digits)
+    cols = [("nodes", "nodes", 1, 0), ("gzip_bytes", "ONNX gz (kB)", 1e-3, 0), ("native_load_ms", "native session (ms)", 1, 0),
+            ("browser_load_ms", "browser load (ms)", 1, 0), ("k10_worker_ms", "K=10 in worker (ms)", 1, 1),
+            ("first_prediction_ms", "first prediction (ms)", 1, 0)]
 
-    def cell(a, b, digits):
-        if a is None or b is None:
-            return "—"
-        scale = 1e-3 if digits < 0 else 1
-        d = max(digits, 0)
-        return f"{a * scale:.{d}f} → {b * scale:.{d}f}"
+    def cell(a, b, scale, digits):
+        return "—" if a is None or b is None else f"{a * scale:.{digits}f} → {b * scale:.{digits}f}"
     out = []
     for e in doc.get("earlier", []):
         out += [f"### {e['change']}", "", f"Earlier run: {e['date']}. {e['note']}", ""]
-        rows = [[mid] + [cell(before.get(k), now.get(mid, {}).get(k), d) for k, _, d in cols]
+        rows = [[mid] + [cell(before.get(k), now.get(mid, {}).get(k), sc, d) for k, _, sc, d in cols]
                 for mid, before in e["summary"].items()]
-        out += [table(["model"] + [label for _, label, _ in cols], rows), ""]
+        out += [table(["model"] + [c[1] for c in cols], rows), ""]
     return out
 
 

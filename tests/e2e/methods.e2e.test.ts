@@ -1,12 +1,10 @@
 // LCP-VAE and Keyposes in a real Chromium: K = 10 futures from a history of the test split, drawn
 // on stage, differing from each other (LCP: positions; Keyposes: label sequences); controls cannot
 // leave their range, and a link that asks for it is named.
-import { writeFile } from 'node:fs/promises';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import type { BrowserSession } from './browser';
-import { NO_PROBLEMS, openPredictPage, predicted, settle, waiting } from './predict-page';
-import { pixelStats } from './pixels';
+import { NO_PROBLEMS, openPredictPage, predicted, stageShot, waiting } from './predict-page';
 
 const baseUrl = inject('baseUrl');
 
@@ -37,14 +35,6 @@ async function predictTen(page: Page, model: string): Promise<void> {
   expect(d.predictionK).toBe('10');
 }
 
-async function stageShot(session: BrowserSession, page: Page, name: string): Promise<void> {
-  await page.evaluate(() => { const p = window.motionFutures!.player; p.pause(); p.seek(45); });
-  await settle(page);
-  await writeFile(`/tmp/${name}`, await session.screenshot(name));
-  const stats = await pixelStats(session.context, await session.screenshot(`stage-${name}`, page.locator('#viewer')));
-  expect(stats.foreground).toBeGreaterThan(0.02 * stats.width * stats.height);   // figures on stage
-}
-
 describe('LCP-VAE and Keyposes in the browser', () => {
   let session: BrowserSession;
   let page: Page;
@@ -59,7 +49,7 @@ describe('LCP-VAE and Keyposes in the browser', () => {
     await predictTen(page, 'lcp-vae');
     expect(await spread(page)).toBeGreaterThan(0.01);
     expect(await page.locator('.sample-item').count()).toBe(10);
-    await stageShot(session, page, 'lcp-vae-k10.png');
+    await stageShot(session, page, 'lcp-vae-k10.png', 45);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
@@ -82,7 +72,7 @@ describe('LCP-VAE and Keyposes in the browser', () => {
     expect(labels.every((l) => l.length >= 2)).toBe(true);
     expect(new Set(labels.map((l) => l.join(','))).size).toBeGreaterThan(1);
     expect(await spread(page)).toBeGreaterThan(0.01);
-    await stageShot(session, page, 'keyposes-k10.png');
+    await stageShot(session, page, 'keyposes-k10.png', 45);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 

@@ -1,7 +1,12 @@
 // What the method browser tests share: the predict page opened on the walker's test history, and
 // the waits and inputs they drive it with.
+import { readFileSync } from 'node:fs';
+import { writeFile } from 'node:fs/promises';
+import { expect } from 'vitest';
 import type { Page } from 'playwright-core';
+import type { Manifest, ModelEntry } from '../../web/src/contract/types';
 import { openBrowser, type BrowserSession } from './browser';
+import { pixelStats } from './pixels';
 
 export const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
 
@@ -30,4 +35,21 @@ export async function openPredictPage(baseUrl: string): Promise<BrowserSession> 
   await session.page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]',
     { state: 'attached', timeout: 60_000 });
   return session;
+}
+
+/** The committed manifest's entry for `id`; a test without its model says how to make it. */
+export function servedModel(id: string): ModelEntry {
+  const manifest: Manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
+  const entry = manifest.models.find((m) => m.id === id);
+  if (!entry) throw new Error(`public/models/manifest.json serves no ${id} model: run \`python -m export models --only ${id}\``);
+  return entry;
+}
+
+/** Pause on `frame`, save the page as /tmp/`name` and check that figures are drawn on stage. */
+export async function stageShot(session: BrowserSession, page: Page, name: string, frame: number): Promise<void> {
+  await page.evaluate((f) => { const p = window.motionFutures!.player; p.pause(); p.seek(f); }, frame);
+  await settle(page);
+  await writeFile(`/tmp/${name}`, await session.screenshot(name));
+  const stats = await pixelStats(session.context, await session.screenshot(`stage-${name}`, page.locator('#viewer')));
+  expect(stats.foreground).toBeGreaterThan(0.02 * stats.width * stats.height);   // figures on stage
 }

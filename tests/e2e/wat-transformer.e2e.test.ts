@@ -1,20 +1,14 @@
 // WAT (Transformer) in a real Chromium: the same WAT predictor and UI as the RNN, another manifest
 // entry. Select it, compose a 3-action sequence, predict K = 10 futures from a test-split history,
 // and check the per-sample segments, stop lengths and variance curves it returns.
-import { readFileSync } from 'node:fs';
-import { writeFile } from 'node:fs/promises';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
-import type { Manifest } from '../../web/src/contract/types';
 import type { WatParams } from '../../web/src/predictor/wat';
 import type { BrowserSession } from './browser';
-import { compose, NO_PROBLEMS, openPredictPage, predicted, settle } from './predict-page';
-import { pixelStats } from './pixels';
+import { compose, NO_PROBLEMS, openPredictPage, predicted, servedModel, stageShot, waiting } from './predict-page';
 
 const baseUrl = inject('baseUrl');
-const manifest: Manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
-const entry = manifest.models.find((m) => m.id === 'wat-transformer');
-if (!entry) throw new Error('public/models/manifest.json serves no wat-transformer model: run `python -m export models --only wat-transformer`');
+const entry = servedModel('wat-transformer');
 const params = entry.params as unknown as WatParams;
 const SEQUENCE = ['walk', 'punch', 'jump'];
 
@@ -36,7 +30,7 @@ describe('WAT (Transformer) in the browser', () => {
     await page.locator('#control-k').fill('10');
     await compose(page, SEQUENCE);
     expect(await page.locator('.action-chip').allTextContents()).toEqual(['1. walk×', '2. punch×', '3. jump×']);
-    await page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
+    await waiting(page);
     await page.locator('#predict').click();
     await predicted(page);
 
@@ -61,11 +55,7 @@ describe('WAT (Transformer) in the browser', () => {
     expect(await page.locator('.sample-item').count()).toBe(10);
     expect(await page.locator('figure.curve svg.curve-plot path').count()).toBe(10);
 
-    await page.evaluate(() => { const p = window.motionFutures!.player; p.pause(); p.seek(40); });
-    await settle(page);
-    await writeFile('/tmp/wat-tf.png', await session.screenshot('wat-transformer.png'));
-    const stats = await pixelStats(session.context, await session.screenshot('wat-transformer-stage.png', page.locator('#viewer')));
-    expect(stats.foreground).toBeGreaterThan(0.02 * stats.width * stats.height);   // figures on stage
+    await stageShot(session, page, 'wat-transformer.png', 40);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 });

@@ -1,9 +1,11 @@
 """The committed models in public/models: valid, complete, and not stale against config, data and code."""
+import gzip
 import hashlib
 
 import numpy as np
 import pytest
 
+from export.bench.native import cap_mb
 from export.config import load_config, model_hash
 from export.contract import load_json
 from export.data.clip_json import read_clip
@@ -19,6 +21,13 @@ def test_manifest_uses_the_committed_data():
     index = load_json(CLIPS_DIR / "index.json", "clip-index")
     assert MANIFEST["data_hash"] == index["data_hash"]
     assert MANIFEST["skeleton"]["joints"] == index["skeleton"]["joints"]
+
+
+@pytest.mark.parametrize("entry", [m for m in MANIFEST["models"] if cap_mb(m)], ids=lambda e: e["id"])
+def test_committed_model_fits_its_issues_size_cap(entry):
+    """A model's graphs together, gzipped at level 9 (what a browser downloads with compression)."""
+    gz = sum(len(gzip.compress((MODELS_DIR / g["file"]).read_bytes(), 9)) for g in entry["graphs"].values())
+    assert gz <= cap_mb(entry) * 1e6, f"{entry['id']}: {gz} bytes of ONNX gzipped"
 
 
 @pytest.mark.parametrize("entry", MANIFEST["models"], ids=lambda e: e["id"])

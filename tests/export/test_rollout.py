@@ -59,7 +59,7 @@ def test_the_fused_rollout_matches_torchs_gru_cell_loop(context, residual):
     assert check_parity(g, blob, batch=9, seed=2) < 1e-5
     seed, ctx = torch.randn(3, K // 3, 3), torch.randn(3, C)
     x, h, *rest = module.setup(seed, ctx)
-    with torch.no_grad():   # the rollout's own torch form agrees too (what the models' tests use)
+    with torch.no_grad():   # the rollout's own torch form agrees too
         assert torch.allclose(module.rollout().run(x, h, rest[0] if rest else None), module(seed, ctx), atol=1e-5)
     ops = collections.Counter(n.op_type for n in onnx.load_from_string(blob).graph.node)
     assert ops["GRU"] == T

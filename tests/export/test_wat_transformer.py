@@ -1,5 +1,4 @@
-"""WAT (Transformer): the model behind the RNN's interface, export parity and size, the shared predictor."""
-import gzip
+"""WAT (Transformer): the model behind the RNN's interface, export parity, the shared predictor."""
 import inspect
 
 import numpy as np
@@ -144,15 +143,3 @@ def test_the_wat_predictor_runs_it_on_an_action_sequence_reproducibly(tiny, clip
     assert np.array_equal(a.futures, b.futures) and np.isfinite(a.futures).all()
     assert all([g["action"] for g in s["segments"]] == ["walk", "punch", "run"] for s in a.samples)
     assert np.abs(a.futures[0, :10] - a.futures[1, :10]).max() > 0           # samples differ
-
-
-def test_served_model_is_under_the_size_cap():
-    """The committed Transformer graphs, gzipped at level 9: at most 0.55 MB (issue 6)."""
-    from export.manifest import read_manifest
-    from export.paths import MODELS_DIR
-    served = [m for m in read_manifest(MODELS_DIR / "manifest.json")["models"] if m["method"] == "wat_transformer"]
-    if not served:
-        pytest.skip("no WAT (Transformer) model is served yet")
-    for entry in served:
-        total = sum(len(gzip.compress((MODELS_DIR / g["file"]).read_bytes(), 9)) for g in entry["graphs"].values())
-        assert total <= 0.55e6, f"{entry['id']}: {total} bytes gzipped"

@@ -10,7 +10,7 @@ export type { FileLoader };
 export type { GraphTiming };
 
 export class OrtRunner implements GraphRunner {
-  private sessions = new Map<string, Promise<Ort.InferenceSession>>();
+  private sessions = new Map<string, Promise<{ session: Ort.InferenceSession; ort: OrtModule }>>();
   private readonly ort: Promise<OrtModule>;
 
   /** `onRun` receives each session.run's timing (the worker returns them with the result; bench/ reads them).
@@ -29,13 +29,14 @@ export class OrtRunner implements GraphRunner {
     await Promise.all(roles.map((role) => this.session(role, (n) => { done.set(role, n); report(); })));
   }
 
-  private session(role: string, onProgress?: (loaded: number) => void): Promise<Ort.InferenceSession> {
+  private session(role: string, onProgress?: (loaded: number) => void): Promise<{ session: Ort.InferenceSession; ort: OrtModule }> {
     let s = this.sessions.get(role);
     if (!s) {
       const spec = this.entry.graphs[role];
       if (!spec) throw new Error(`model ${this.entry.id} has no graph '${role}'`);
-      s = Promise.all([this.load(spec.file, onProgress), this.ort]).then(([bytes, ort]) => ort.InferenceSession.create(bytes, {
-        executionProviders: ['wasm'], graphOptimizationLevel: 'all',
+      s = Promise.all([this.load(spec.file, onProgress), this.ort]).then(async ([bytes, ort]) => ({
+        session: await ort.InferenceSession.create(bytes, { executionProviders: ['wasm'], graphOptimizationLevel: 'all' }),
+        ort,
       }));
       s.catch(() => this.sessions.delete(role)); // a failed load may be retried
       this.sessions.set(role, s);
@@ -44,8 +45,7 @@ export class OrtRunner implements GraphRunner {
   }
 
   async run(role: string, feeds: Record<string, Tensor>): Promise<Record<string, Tensor>> {
-    const session = await this.session(role);
-    const ort = await this.ort;
+    const { session, ort } = await this.session(role);
     const inputs: Record<string, Ort.Tensor> = {};
     for (const [name, t] of Object.entries(feeds)) inputs[name] = new ort.Tensor('float32', t.data, t.dims);
     const t0 = performance.now();
