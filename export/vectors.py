@@ -14,10 +14,12 @@ from .data.skeleton import SKELETON
 from .ops.facing import canonicalise
 from .paths import VECTORS_DIR
 from .rng import Prng
-from .vectors_keyposes import keyposes_e2e_cases, keyposes_vector
-from .vectors_lcp import lcp_e2e_cases, lcp_vector
+from .tolerance import about, float32_floor, float_gap, rounding_gap
+from .vectors_keyposes import keyposes_e2e_cases, keyposes_record, keyposes_vector
+from .vectors_lcp import lcp_e2e_cases, lcp_record, lcp_vector
+from .vectors_record import record
 from .vectors_retarget import retarget_vector
-from .vectors_wat import dct_smoothness_vector, variance_stop_vector, wat_e2e_cases
+from .vectors_wat import dct_smoothness_vector, variance_stop_vector, wat_e2e_cases, wat_record
 from .vectors_wat_transformer import wat_transformer_e2e_cases
 
 PRNG_SEEDS = [0, 1, 42, 123456789, 4294967295]
@@ -34,7 +36,7 @@ def prng_vector() -> dict:
             "normals": [n.normal() for _ in range(1000)],
         })
     return {"about": "seed -> first 1000 raw u32 draws (uniform = u32 / 2^32, exact) and, from a fresh "
-                     "generator, the first 1000 normals (two uniforms each, tolerance 1e-12)",
+                     "generator, the first 1000 normals (two uniforms each)",
             "cases": cases}
 
 
@@ -47,7 +49,7 @@ def facing_vector() -> dict:
         out, angle = canonicalise(window, at_frame=9, skeleton=SKELETON)
         cases.append({"clip": name, "start": start, "at_frame": 9, "window": window.tolist(),
                       "angle": angle, "canonical": out.tolist()})
-    return {"about": "a window rotated about +y so that at_frame faces +z (tolerance 1e-9)", "cases": cases}
+    return {"about": "a window rotated about +y so that at_frame faces +z, and the angle undone", "cases": cases}
 
 
 def direct_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:
@@ -60,14 +62,12 @@ def direct_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:
     for clip_name, start in [("walker_walk_forward", 3), ("spin", 90)]:
         history = read_clip(CLIPS_DIR / f"{clip_name}.json").positions[start:start + n]
         req = Request(k=1, seed=7, horizon_frames=entry["params"]["future_frames"] + 15)
-        pred = predictor.predict(history, req)
-        cases.append({"model": entry["id"], "model_hash": entry["hash"], "clip": clip_name, "start": start,
-                      "history": history.astype(np.float32).tolist(), "request": req.to_json(),
-                      "lengths": pred.lengths.tolist(), "futures": np.round(pred.futures.astype(np.float64), 6).tolist()})
+        cases.append(record(entry, clip_name, start, history, req, predictor.predict(history, req)))
     return cases
 
 
-# Each method's cases (its own module picks histories and requests; stochastic ones keep margins).
+# Each method's cases (its own module picks histories and requests; stochastic ones keep margins)
+# and what a case stores of a prediction (the replay compares on the same fields).
 E2E_CASES: dict[str, Callable[[dict, object, float], list[dict]]] = {
     "zero_velocity": direct_e2e_cases,
     "regression": direct_e2e_cases,
@@ -76,37 +76,64 @@ E2E_CASES: dict[str, Callable[[dict, object, float], list[dict]]] = {
     "lcp_vae": lambda entry, predictor, margin: lcp_e2e_cases(entry, predictor),
     "keyposes": keyposes_e2e_cases,
 }
+E2E_RECORD = {"zero_velocity": record, "regression": record, "wat": wat_record, "wat_transformer": wat_record,
+              "lcp_vae": lcp_record, "keyposes": keyposes_record}
+E2E_MARGIN = 1e-3
+E2E_TEXT = ("TypeScript predictors must reproduce these: lengths, segments, labels and marks exactly, every float "
+            "within the model's tolerance. Cases keep margins of at least `margin` to any decision threshold, so a "
+            "last-bit difference cannot flip a decision; checks replay the cases (history, request, seed) and never "
+            "select them again.")
 
 
-def e2e_vector() -> dict:
+def replay(case: dict, predictor, entry: dict) -> dict:
+    """The committed case's history and request through this predictor, stored as the case was."""
+    from .sample.request import Request
+    history = np.asarray(case["history"], dtype=np.float32)
+    req = Request.from_json(case["request"])
+    return E2E_RECORD[entry["method"]](entry, case["clip"], case["start"], history, req,
+                                       predictor.predict(history, req))
+
+
+def e2e_vector(models_dir=None) -> dict:
     """For every served model: manifest + history + request + seed -> futures and lengths.
 
     Stochastic methods keep only cases whose stored margins (to the stop threshold, to sampling
     CDF bounds) are at least E2E_MARGIN, because a 1e-6 runtime difference could flip such a
-    decision.
+    decision. Each model's float32-vs-float64 gap comes from replaying its cases on the same graphs
+    widened to float64.
     """
     from .manifest import read_manifest
     from .paths import MODELS_DIR
     from .sample.predictor import load_predictor
-    manifest = read_manifest(MODELS_DIR / "manifest.json")
-    cases = []
+    models_dir = models_dir or MODELS_DIR
+    manifest = read_manifest(models_dir / "manifest.json")
+    cases, gap = [], {}
     for entry in manifest["models"]:
-        cases += E2E_CASES[entry["method"]](entry, load_predictor(entry["id"]), E2E_MARGIN)
-    return {"about": "TypeScript predictors must reproduce these: lengths (and sampled labels) exactly, "
-                     "positions to 1e-4. Cases keep margins of at least E2E_MARGIN to any decision threshold.",
-            "margin": E2E_MARGIN, "cases": cases}
+        mine = E2E_CASES[entry["method"]](entry, load_predictor(entry["id"], models_dir), E2E_MARGIN)
+        wide = load_predictor(entry["id"], models_dir, precision="float64")
+        gap[entry["id"]] = max(max(float_gap(c, replay(c, wide, entry), f"e2e/{entry['id']}"), float32_floor(c))
+                               for c in mine)
+        cases += mine
+    return {"about": about(E2E_TEXT, gap), "margin": E2E_MARGIN, "cases": cases}
 
 
-E2E_MARGIN = 1e-3
+def _op_family(make: Callable[[], dict]) -> Callable[[], dict]:
+    """A family computed in float64 from committed inputs: its gap is the float32 rounding of its results."""
+    def family() -> dict:
+        doc = make()
+        return {**doc, "about": about(doc["about"], rounding_gap(doc))}
+    family.__name__ = make.__name__
+    return family
+
 
 FAMILIES: dict[str, Callable[[], dict]] = {
-    "prng": prng_vector,
-    "facing": facing_vector,
-    "dct_smoothness": dct_smoothness_vector,
-    "variance_stop": variance_stop_vector,
-    "lcp": lcp_vector,
-    "keyposes": keyposes_vector,
-    "retarget": retarget_vector,
+    "prng": _op_family(prng_vector),
+    "facing": _op_family(facing_vector),
+    "dct_smoothness": _op_family(dct_smoothness_vector),
+    "variance_stop": _op_family(variance_stop_vector),
+    "lcp": _op_family(lcp_vector),
+    "keyposes": _op_family(keyposes_vector),
+    "retarget": _op_family(retarget_vector),
     "e2e": e2e_vector,
 }
 

@@ -2,7 +2,8 @@
 proximity softmax, interpolation from the present pose, and drawing an index with a temperature.
 
 Independent of any trained model: centres are keyposes of committed clips, so the vectors change
-only when this code or the clips change. TypeScript must match to 1e-6 (indices exactly).
+only when this code or the clips change. TypeScript must match within the file's derived tolerance
+(indices exactly).
 """
 from __future__ import annotations
 
@@ -63,9 +64,9 @@ def keyposes_vector() -> dict:
             index, margin = sample_index(np.asarray(logits, np.float32), temperature, u)
             sampling.append({"logits": np.asarray(logits, np.float32).astype(float).tolist(), "temperature": temperature,
                              "u": u, "index": index, "margin": margin})
-    return {"about": "keypose extraction (indices exactly, frame errors to 1e-6), nearest-centre labels, pruning and "
-                     "duration classes exactly, proximity and label distributions to 1e-6, interpolation from the "
-                     "present pose to 1e-6, temperature draws (index exactly, margin to 1e-9)",
+    return {"about": "keypose extraction (indices exactly, frame errors as floats), nearest-centre labels, pruning and "
+                     "duration classes exactly, proximity and label distributions, interpolation from the present "
+                     "pose, temperature draws (index exactly, margin as a float)",
             "extraction": extraction, "labelling": labelling, "pruning": pruning, "durations": durations,
             "interpolation": interpolation, "sampling": sampling}
 
@@ -94,9 +95,12 @@ def keyposes_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:
                 break
         else:
             raise ValueError(f"no seed in 7..199 gives {clip}@{start} margins of at least {margin}")
-        cases.append({"model": entry["id"], "model_hash": entry["hash"], "clip": clip, "start": start,
-                      "history": history.tolist(), "request": req.to_json(), "lengths": pred.lengths.tolist(),
-                      "labels": labels, "marks": [s["marks"] for s in pred.samples],
-                      "min_margin": min(pred.margins),
-                      "futures": np.round(pred.futures.astype(np.float64), 6).tolist()})
+        cases.append(keyposes_record(entry, clip, start, history, req, pred))
     return cases
+
+
+def keyposes_record(entry: dict, clip: str, start: int, history: np.ndarray, req, pred) -> dict:
+    """What a Keyposes case stores of one prediction (also what a replay of the case is compared on)."""
+    from .vectors_record import record
+    return record(entry, clip, start, history, req, pred, labels=[s["labels"] for s in pred.samples],
+                  marks=[s["marks"] for s in pred.samples], min_margin=min(pred.margins))

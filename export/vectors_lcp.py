@@ -2,7 +2,7 @@
 
 These pin the predictor's own arithmetic independently of any ONNX file: TypeScript must
 reproduce z and c from (condition outputs, K, sigma scale, seed) and the diversity of given
-futures, to 1e-6.
+futures, within the file's derived tolerance.
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ def lcp_vector() -> dict:
         futures = rng.normal(scale=0.3, size=(k, frames, 18, 3)).astype(np.float32)
         div.append({"futures": futures.astype(np.float64).tolist(), "diversity": diversity(futures)})
     return {"about": "LCP-VAE predictor arithmetic: condition outputs + K + sigma scale + seed -> z and c "
-                     "(draw order in contract/README.md), and futures -> diversity (WAT Eq. 10); tolerance 1e-6",
+                     "(draw order in contract/README.md), and futures -> diversity (WAT Eq. 10)",
             "sampling": sampling, "diversity": div}
 
 
@@ -57,8 +57,11 @@ def lcp_e2e_cases(entry: dict, predictor) -> list[dict]:
     for clip, start, k, seed, horizon, controls in E2E_CASES:
         history = read_clip(CLIPS_DIR / f"{clip}.json").positions[start:start + n].astype(np.float32)
         req = Request(k=k, seed=seed, horizon_frames=horizon, controls=dict(controls))
-        pred = predictor.predict(history, req)
-        cases.append({"model": entry["id"], "model_hash": entry["hash"], "clip": clip, "start": start,
-                      "history": history.tolist(), "request": req.to_json(), "lengths": pred.lengths.tolist(),
-                      "readouts": pred.readouts, "futures": np.round(pred.futures.astype(np.float64), 6).tolist()})
+        cases.append(lcp_record(entry, clip, start, history, req, predictor.predict(history, req)))
     return cases
+
+
+def lcp_record(entry: dict, clip: str, start: int, history: np.ndarray, req, pred) -> dict:
+    """What an LCP-VAE case stores of one prediction (also what a replay of the case is compared on)."""
+    from .vectors_record import record
+    return record(entry, clip, start, history, req, pred, readouts=pred.readouts)

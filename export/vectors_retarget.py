@@ -1,5 +1,6 @@
 """Shared test vector `retarget`: Python's retargeting of fixture BVH files, which TypeScript
-(three.js BVHLoader + web/src/motion/retarget.ts) must reproduce to 1e-5 m from the same text."""
+(three.js BVHLoader + web/src/motion/retarget.ts) must reproduce from the same text, within the
+file's derived tolerance."""
 from __future__ import annotations
 
 import numpy as np
@@ -22,6 +23,6 @@ def retarget_vector() -> dict:
         jmap = load_map("cmu-bvh", override)
         out = retarget(joint_positions(bvh), bvh.names, bvh.frame_time, jmap, rel)
         cases.append({"file": rel, "joint_map": override, "frames": len(out),
-                      "positions": np.round(out, 7).tolist()})
+                      "positions": out.tolist()})
     return {"about": "BVH file + joint map override (on cmu-bvh) -> positions [frames][18][3] at 30 Hz; "
-                     "TypeScript must match to 1e-5 m", "cases": cases}
+                     "TypeScript must reproduce them from the same text", "cases": cases}

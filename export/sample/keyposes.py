@@ -40,8 +40,8 @@ def read_centres(path: Path, clusters: int, joints: int) -> np.ndarray:
 
 
 class KeyposesPredictor(Predictor):
-    def __init__(self, entry: dict, manifest: dict, models_dir: Path = MODELS_DIR):
-        super().__init__(entry, manifest, models_dir)
+    def __init__(self, entry: dict, manifest: dict, models_dir: Path = MODELS_DIR, precision: str = "float32"):
+        super().__init__(entry, manifest, models_dir, precision)
         self.models_dir = Path(models_dir)
         self._centres: np.ndarray | None = None
 

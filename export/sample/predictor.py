@@ -17,10 +17,10 @@ from .runner import GraphRunner
 
 
 class Predictor:
-    def __init__(self, entry: dict, manifest: dict, models_dir: Path = MODELS_DIR):
+    def __init__(self, entry: dict, manifest: dict, models_dir: Path = MODELS_DIR, precision: str = "float32"):
         self.entry, self.manifest = entry, manifest
         self.params = entry["params"]
-        self.runner = GraphRunner(entry, models_dir)
+        self.runner = GraphRunner(entry, models_dir, precision)
 
     def predict(self, history: np.ndarray, req: Request) -> Prediction:
         """history [frames, J, 3] in the world frame -> K futures in the same frame."""
@@ -44,11 +44,12 @@ PREDICTORS: dict[str, str] = {
 }
 
 
-def predictor_for(entry: dict, manifest: dict, models_dir: Path) -> Predictor:
+def predictor_for(entry: dict, manifest: dict, models_dir: Path, precision: str = "float32") -> Predictor:
     module, name = PREDICTORS[entry["method"]].split(":")
-    return getattr(importlib.import_module(module), name)(entry, manifest, models_dir)
+    return getattr(importlib.import_module(module), name)(entry, manifest, models_dir, precision)
 
 
-def load_predictor(model_id: str, models_dir: Path = MODELS_DIR) -> Predictor:
+def load_predictor(model_id: str, models_dir: Path = MODELS_DIR, precision: str = "float32") -> Predictor:
+    """precision="float64" runs the same graphs widened to float64 (the float32 error reference)."""
     manifest = read_manifest(Path(models_dir) / "manifest.json")
-    return predictor_for(find_entry(manifest, model_id), manifest, Path(models_dir))
+    return predictor_for(find_entry(manifest, model_id), manifest, Path(models_dir), precision)

@@ -2,6 +2,7 @@
 // history, per-sample stops, and clear messages for bad input.
 import { describe, expect, it } from 'vitest';
 import { loadManifest, nodePredictor } from './helpers/models';
+import { readVector } from './helpers/vectors';
 import { readFileSync } from 'node:fs';
 import { PredictError } from '../../web/src/predictor/types';
 import { firstStop } from '../../web/src/sampling/variance-stop';
@@ -48,10 +49,10 @@ describe('WAT predictor (TypeScript, served model)', () => {
   });
 
   // The e2e vector checks lengths and positions (e2e-vector.test.ts); here the segments too.
-  const vector = JSON.parse(readFileSync(new URL('../../contract/vectors/e2e.json', import.meta.url), 'utf8')) as {
+  const vector = readVector<{
     cases: { model: string; clip: string; start: number; history: number[][][]; request: { k: number; seed: number; actions: string[] };
       segments: { start: number; length: number; action: string; stopped: boolean }[][] }[];
-  };
+  }>('e2e');
   const cases = vector.cases.filter((c) => c.model === entry.id);
   it('the end-to-end vector has WAT cases', () => { expect(cases.length).toBeGreaterThan(0); });
   for (const c of cases) {
