@@ -18,6 +18,14 @@ averages the per-joint distances.
 | joint speed                  | joint_speed               | mean speed in the last second   |
 | classifier accuracy          | accuracy                  | WAT sec. 4.2 (2), Keyposes MOAC |
 | mean per-class accuracy      | balanced_accuracy         | LCP-VAE sec. 5 ("context")      |
+| best-of-K ADE and FDE        | ade_fde                   | WAT Eq. 12, DLow (ADE, FDE)     |
+| average pairwise distance    | apd                       | DLow (APD)                      |
+| multi-modal ADE / FDE        | mmade_mmfde               | DLow (MMADE, MMFDE)             |
+| bone length error            | bone_length_error         | relative to the history's bones |
+| feet below the floor         | foot_below_floor          | share of frames, ops/floor.py   |
+| jump at the first frame      | first_frame_jump          | vs the history's own last step  |
+
+DLow: Yuan, Kitani, "DLow: Diversifying Latent Flows for Diverse Human Motion Prediction", ECCV 2020.
 """
 from __future__ import annotations
 
@@ -27,7 +35,11 @@ import numpy as np
 from dtaidistance import dtw_ndim
 from scipy.special import gammaln
 
+from ..data.skeleton import SKELETON, Skeleton
+from ..ops import facing
 from ..ops.dct_smoothness import L_FRAMES, smoothness
+from ..ops.bones import bone_lengths
+from ..ops.floor import foot_height
 
 
 def _flat(motion: np.ndarray) -> np.ndarray:
@@ -184,3 +196,153 @@ def noise_diversity(sigma: float, coordinates: int) -> float:
     freedom, with mean sqrt(2) Gamma((D+1)/2) / Gamma(D/2). The sanity row checks Eq. 10 against it."""
     d = coordinates
     return float(2.0 * sigma * np.exp(gammaln((d + 1) / 2) - gammaln(d / 2)))
+
+
+# --- DLow's accuracy and diversity metrics, and plausibility checks for the browser's read-out ---------
+
+
+def root_relative(motion: np.ndarray) -> np.ndarray:
+    """World positions [..., T, J, 3] -> root-relative poses: each frame's root x and z subtracted from
+    every joint, heights kept (DLow evaluates root-relative poses). The split lives in ops/facing.py."""
+    return facing.root_relative(facing.split_root(motion))
+
+
+_to_root_relative = root_relative   # ade_fde's flag of the same name hides the function inside it
+
+
+def ade_fde_per_sample(futures: np.ndarray, truth: np.ndarray,
+                       root_relative: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Each sample's ADE and FDE against the ground truth [T, J, 3]: two [K] arrays (metres).
+
+    ADE = mean over the T truth frames of the whole-pose distance ||y_t - x_t||_2 (J*3 coordinates,
+    WAT Eq. 12 before its min, DLow's ADE); FDE = that distance at the last truth frame (DLow).
+    Samples longer than the truth are cut to it; `root_relative` compares root_relative() poses.
+    """
+    futures, truth = np.asarray(futures, dtype=np.float64), np.asarray(truth, dtype=np.float64)
+    t = len(truth)
+    if futures.shape[1] < t:
+        raise ValueError(f"the futures have {futures.shape[1]} frames, fewer than the truth's {t}")
+    futures = futures[:, :t]
+    if root_relative:
+        futures, truth = _to_root_relative(futures), _to_root_relative(truth)
+    dist = np.linalg.norm((futures - truth).reshape(len(futures), t, -1), axis=-1)   # [K, T]
+    return dist.mean(1), dist[:, -1]
+
+
+def ade_fde(futures: np.ndarray, truth: np.ndarray, root_relative: bool) -> tuple[float, float]:
+    """Best-of-K (ADE, FDE): each minimised over the samples on its own, as DLow does, so the two
+    may come from different samples."""
+    ade_k, fde_k = ade_fde_per_sample(futures, truth, root_relative)
+    return float(ade_k.min()), float(fde_k.min())
+
+
+def apd(futures: np.ndarray) -> float:
+    """DLow's APD: 1 / (K (K - 1)) sum over ordered pairs i != j of ||Y_i - Y_j||_2, where each Y is a
+    whole future flattened to T*J*3 numbers; 0 for K = 1.
+
+    Not WAT Eq. 10 (`diversity`), which averages per-frame pose distances: APD takes one norm over
+    the whole sequence, so it grows like sqrt(T) for a steady per-frame spread. DLow computes it on
+    root-relative poses; pass root_relative(futures) for that.
+    """
+    flat = np.asarray(futures, dtype=np.float64).reshape(len(futures), -1)
+    k = len(flat)
+    if k < 2:
+        return 0.0
+    d = np.linalg.norm(flat[:, None] - flat[None], axis=-1)   # the diagonal is 0
+    return float(d.sum() / (k * (k - 1)))
+
+
+def bone_length_error(motion: np.ndarray, reference_lengths: np.ndarray, skeleton: Skeleton = SKELETON) -> float:
+    """Mean over frames and bones of |L - L_ref| / L_ref: how far a prediction stretches the body.
+
+    The reference is the history's mean bone lengths (bone_lengths(history).mean(0)), not the rest
+    skeleton, so a retargeted clip whose bones are already off by a little starts at 0.
+    """
+    ref = np.asarray(reference_lengths, dtype=np.float64)
+    if np.any(ref <= 0):
+        raise ValueError("reference bone lengths must be positive")
+    return float((np.abs(bone_lengths(motion, skeleton) - ref) / ref).mean())
+
+
+def foot_below_floor(motion: np.ndarray, depth: float = 0.03, skeleton: Skeleton = SKELETON) -> float:
+    """Share of frames whose foot (the lower of ankle and toe, either side: ops/floor.foot_height) is
+    more than `depth` metres below the floor y = 0. The default is the 3 cm of floor.CONTACT_BAND: a
+    foot within it counts as on the floor, so only sinking beyond it is an error."""
+    return float((foot_height(np.asarray(motion, dtype=np.float64), skeleton) < -depth).mean())
+
+
+def first_frame_jump(history: np.ndarray, future: np.ndarray) -> tuple[float, float]:
+    """(jump, last_step): the mean per-joint distance from the history's last frame to the future's
+    first frame, and the history's own last step (mean per-joint distance between its last two
+    frames), metres. A jump well above the step is a visible pop at the seam."""
+    h, f = np.asarray(history, dtype=np.float64), np.asarray(future, dtype=np.float64)
+    if len(h) < 2:
+        raise ValueError("the history needs at least two frames for its last step")
+    jump = np.linalg.norm(f[0] - h[-1], axis=-1).mean()
+    last_step = np.linalg.norm(h[-1] - h[-2], axis=-1).mean()
+    return float(jump), float(last_step)
+
+
+def jump_ok(jump: float, last_step: float) -> bool:
+    """The seam is smooth when jump <= max(1.5 x last step, 1 cm): the floor of 1 cm lets a still
+    history (step ~ 0) start a motion without being called a jump."""
+    return bool(jump <= max(1.5 * last_step, 0.01))
+
+
+def _last_pose_distances(histories: np.ndarray) -> np.ndarray:
+    """[W, N, J, 3] -> [W, W]: whole-pose L2 distance between the windows' root-relative last poses."""
+    last = root_relative(np.asarray(histories)[:, -1:])[:, 0].reshape(len(histories), -1)
+    return np.linalg.norm(last[:, None] - last[None], axis=-1)
+
+
+def similar_sets(histories: np.ndarray, threshold: float) -> list[np.ndarray]:
+    """DLow's multi-modal ground truth: for each window w, the indices of the windows whose last history
+    pose lies within `threshold` (L2 over the whole root-relative pose, metres) of w's; w is always in
+    its own set. The histories must face one way at their last frame: canonical windows (ops/facing),
+    whose root channel is 0 at that frame, so their last poses read as positions.
+
+    `<=` where DLow's code has `<`, so a threshold taken from the distances themselves
+    (choose_threshold) includes the pair that defines it.
+    """
+    d = _last_pose_distances(histories)
+    return [np.flatnonzero(row <= threshold) for row in d]
+
+
+def choose_threshold(histories: np.ndarray, min_median_size: int = 5) -> float:
+    """The smallest threshold, among the windows' pairwise last-pose distances, at which the median
+    similar set has at least `min_median_size` members (itself included).
+
+    DLow fixes 0.5 for Human3.6M; our windows and skeleton differ, so the threshold is chosen from
+    the data instead. The median set size only grows with the threshold: a binary search suffices.
+    """
+    d = _last_pose_distances(histories)
+    if len(d) < min_median_size:
+        raise ValueError(f"{len(d)} windows cannot give sets of {min_median_size}")
+    candidates = np.unique(d)              # sorted; includes 0 (each window with itself)
+    lo, hi = 0, len(candidates) - 1        # the largest distance puts every window in every set
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if np.median((d <= candidates[mid]).sum(1)) >= min_median_size:
+            hi = mid
+        else:
+            lo = mid + 1
+    return float(candidates[lo])
+
+
+def mmade_mmfde(futures_per_window, truths: np.ndarray, sets: list[np.ndarray],
+                root_relative: bool = True) -> tuple[float, float]:
+    """DLow's MMADE and MMFDE: for window w, the best-of-K ADE (FDE) of w's futures [K, T', J, 3] against
+    each member's truth [T, J, 3] of w's similar set, averaged over the set; then the mean over windows.
+
+    A window whose set is only itself still counts, with its own truth (its MMADE term is then its
+    ADE), as in DLow. Root-relative by default: the truths of other windows started elsewhere. Each
+    window's futures and truth are positions in its own canonical frame (facing +z at its last history
+    frame): facing.join_root of a canonical window, not the models' tensors with the root channel.
+    """
+    truths = np.asarray(truths, dtype=np.float64)
+    if len(sets) != len(truths) or len(futures_per_window) != len(truths):
+        raise ValueError("one similar set and one set of futures per window")
+    per_window = [np.mean([ade_fde(futures_per_window[w], truths[v], root_relative) for v in members], axis=0)
+                  for w, members in enumerate(sets)]
+    mm = np.mean(per_window, axis=0)
+    return float(mm[0]), float(mm[1])

@@ -150,3 +150,146 @@ def test_summary_and_the_two_sigma_rule():
     assert combine([HOLDS, HOLDS]) == HOLDS and combine([HOLDS, MISSING]) == MISSING
     with pytest.raises(ValueError, match="direction"):
         compare(a, b, "bigger")
+
+
+# --- ADE/FDE, APD, MMADE/MMFDE (DLow) and the read-out's plausibility checks ---------------------------
+
+
+def test_root_relative_subtracts_the_roots_horizontal_position_and_keeps_height():
+    m = np.array([[[1.0, 0.5, 2.0], [2.0, 1.0, 3.0]]])
+    assert M.root_relative(m).tolist() == [[[0.0, 0.5, 0.0], [1.0, 1.0, 1.0]]]
+    k = np.stack([m, m + [10.0, 0.0, -4.0]])                  # [K, T, J, 3] works too
+    assert np.allclose(M.root_relative(k)[1], M.root_relative(m))
+
+
+def test_ade_fde_best_of_k_each_minimised_on_its_own():
+    truth = np.zeros((2, 1, 3))
+    s1 = np.zeros((3, 1, 3))
+    s1[0, 0] = [3, 4, 0]                     # distances 5, 0 (the third frame is past the truth)
+    s1[2, 0] = [9, 9, 9]
+    s2 = motion([1, 1, 1])                   # distances 1, 1
+    ade_k, fde_k = M.ade_fde_per_sample(np.stack([s1, s2]), truth, root_relative=False)
+    assert ade_k.tolist() == [2.5, 1.0] and fde_k.tolist() == [0.0, 1.0]
+    assert M.ade_fde(np.stack([s1, s2]), truth, root_relative=False) == (1.0, 0.0)   # two different samples
+    assert M.ade_fde(np.stack([s1, s2]), truth, False)[0] == pytest.approx(M.ade(np.stack([s1, s2]), truth))
+    with pytest.raises(ValueError, match="fewer than"):
+        M.ade_fde(np.stack([s1[:1]]), truth, False)
+
+
+def test_ade_fde_whole_pose_and_root_relative():
+    truth = motion([0, 0], joints=2)
+    moved = motion([5, 5], joints=2)                    # every joint 5 m along x: the root too
+    assert M.ade_fde(moved[None], truth, root_relative=False) == pytest.approx((5 * math.sqrt(2),) * 2)
+    assert M.ade_fde(moved[None], truth, root_relative=True) == (0.0, 0.0)   # travel is not pose
+    lifted = motion([5, 5], joints=2, y=1.0)            # ... but height is
+    assert M.ade_fde(lifted[None], truth, root_relative=True) == pytest.approx((math.sqrt(2),) * 2)
+
+
+def test_apd_is_one_norm_over_the_whole_sequence():
+    y0 = np.zeros((2, 1, 3))
+    y1 = np.zeros((2, 1, 3))
+    y1[0, 0] = [3, 4, 0]                     # |y1 - y0| = 5
+    y2 = np.zeros((2, 1, 3))
+    y2[1, 0] = [6, 8, 0]                     # |y2 - y0| = 10, |y2 - y1| = sqrt(9 + 16 + 36 + 64)
+    three = np.stack([y0, y1, y2])
+    assert M.apd(three) == pytest.approx((5 + 10 + math.sqrt(125)) / 3)
+    assert M.diversity(three) == pytest.approx((2.5 + 5 + 7.5) / 3)       # WAT Eq. 10: per frame, then mean
+    assert M.apd(y0[None]) == 0.0
+
+
+def test_bone_length_error_relative_to_the_reference():
+    from export.data.skeleton import SKELETON, Skeleton
+    chain = Skeleton(names=("root", "a", "b"), parents=(-1, 0, 1), offsets=np.zeros((3, 3)))
+    m = np.array([[[0, 0, 0], [0, 1, 0], [0, 1, 2]],          # bones 1, 2
+                  [[0, 0, 0], [0, 1.1, 0], [0, 1.1, 1.5]]])   # bones 1.1, 1.5
+    lengths = M.bone_lengths(m, chain)
+    assert lengths == pytest.approx(np.array([[1, 2], [1.1, 1.5]]))
+    ref = lengths.mean(0)                                     # 1.05, 1.75
+    # (0.05/1.05 + 0.25/1.75 + 0.05/1.05 + 0.25/1.75) / 4 = (1/21 + 1/7) / 2
+    assert M.bone_length_error(m, ref, chain) == pytest.approx(2 / 21)
+    rest = SKELETON.offsets.copy()
+    for j, p in enumerate(SKELETON.parents):                  # parents precede children: the rest pose
+        if p >= 0:
+            rest[j] = rest[p] + SKELETON.offsets[j]
+    assert M.bone_lengths(rest[None]) == pytest.approx(SKELETON.bone_lengths()[None])
+    assert M.bone_length_error(rest[None], SKELETON.bone_lengths()) == pytest.approx(0.0, abs=1e-12)
+    with pytest.raises(ValueError, match="positive"):
+        M.bone_length_error(m, [1.0, 0.0], chain)
+
+
+def test_foot_below_floor_counts_frames_more_than_depth_under():
+    from export.data.skeleton import SKELETON
+    m = np.ones((4, SKELETON.num_joints, 3))
+    feet = [SKELETON.index(n) for n in ("right_ankle", "right_toe", "left_ankle", "left_toe")]
+    m[:, feet, 1] = 0.0
+    m[1, SKELETON.index("left_toe"), 1] = -0.05       # below
+    m[2, SKELETON.index("right_ankle"), 1] = -0.03    # exactly the depth: not more than it
+    m[3, SKELETON.index("right_toe"), 1] = -0.031     # below
+    m[0, SKELETON.index("root"), 1] = -5.0            # not a foot
+    assert M.foot_below_floor(m) == 0.5
+    assert M.foot_below_floor(m, depth=0.1) == 0.0
+
+
+def test_first_frame_jump_and_its_rule():
+    history = motion([0.0, 0.1, 0.2], joints=2)
+    assert M.first_frame_jump(history, motion([0.3], joints=2)) == pytest.approx((0.1, 0.1))
+    two = motion([0.5], joints=2)
+    two[0, 1, 0] = 0.2                                 # one joint jumps 0.3, the other stays: mean 0.15
+    jump, step = M.first_frame_jump(history, two)
+    assert (jump, step) == pytest.approx((0.15, 0.1))
+    assert M.jump_ok(jump, step) and not M.jump_ok(0.151, step)     # 1.5 x the last step
+    assert M.jump_ok(0.01, 0.0) and not M.jump_ok(0.0101, 0.0)     # a still history: 1 cm
+    with pytest.raises(ValueError, match="two frames"):
+        M.first_frame_jump(history[:1], two)
+
+
+def four_histories():
+    """Four windows whose last poses differ only in joint 1's x offset from the root: 0, 0.25, 0.75, 2 m
+    (so their distances are the differences, exact in binary); the roots stand elsewhere (ignored)."""
+    h = np.zeros((4, 2, 2, 3))
+    for w, (root_x, offset) in enumerate([(0, 0.0), (7, 0.25), (-3, 0.75), (2, 2.0)]):
+        h[w, :, :, 0] = root_x
+        h[w, -1, 1, 0] = root_x + offset
+        h[w, 0, 1, 0] = root_x + 0.5 * w               # the earlier frame does not matter
+    return h
+
+
+def test_similar_sets_by_last_pose_include_the_window_itself():
+    h = four_histories()
+    sets = M.similar_sets(h, 0.5)
+    assert [s.tolist() for s in sets] == [[0, 1], [0, 1, 2], [1, 2], [3]]
+    assert [s.tolist() for s in M.similar_sets(h, 0.0)] == [[0], [1], [2], [3]]
+
+
+def test_choose_threshold_is_the_smallest_distance_giving_the_median_size():
+    h = four_histories()
+    # sizes at 0.25: [2, 2, 1, 1] (median 1.5); at 0.5: [2, 3, 2, 1] (median 2)
+    assert M.choose_threshold(h, min_median_size=2) == 0.5
+    # at 0.75: [3, 3, 3, 1] (median 3)
+    assert M.choose_threshold(h, min_median_size=3) == 0.75
+    assert M.choose_threshold(h, min_median_size=1) == 0.0
+    with pytest.raises(ValueError, match="cannot give sets of 5"):
+        M.choose_threshold(h)
+
+
+def test_mmade_mmfde_by_hand():
+    truths = np.stack([motion([0, 0]), motion([1, 1]), motion([5, 5])])
+    futures = [np.stack([motion([0, 0]), motion([1, 1])]),     # vs truth 0: 0; vs truth 1: 0
+               np.stack([motion([2, 2]), motion([3, 3])]),     # vs truth 0: 2; vs truth 1: 1 -> mean 1.5
+               np.stack([motion([5, 7]), motion([8, 8])])]     # alone, vs its own truth: ADE 1, FDE 2
+    sets = [np.array([0, 1]), np.array([0, 1]), np.array([2])]
+    mmade, mmfde = M.mmade_mmfde(futures, truths, sets, root_relative=False)
+    assert mmade == pytest.approx((0 + 1.5 + 1) / 3)
+    assert mmfde == pytest.approx((0 + 1.5 + 2) / 3)
+    assert M.mmade_mmfde(futures, truths, sets) == (0.0, 0.0)   # one joint, x only: nothing root-relative
+    with pytest.raises(ValueError, match="one similar set"):
+        M.mmade_mmfde(futures, truths, sets[:2])
+
+
+def test_metrics_vector_is_deterministic_and_covers_k_1_3_5():
+    from export.vectors_metrics import metrics_vector
+    a, b = metrics_vector(), metrics_vector()
+    assert a == b
+    assert sorted({c["k"] for c in a["cases"]}) == [1, 3, 5]
+    c = a["cases"][-1]
+    assert c["world"]["ade"] == min(c["world"]["ade_per_sample"])
