@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from .data.skeleton import SKELETON
-from .ops.facing import canonicalise
+from .ops.facing import canonicalise, place
 from .paths import VECTORS_DIR
 from .rng import Prng
 from .tolerance import about, float32_floor, float_gap, rounding_gap
@@ -46,10 +46,13 @@ def facing_vector() -> dict:
     cases = []
     for name, start in [("walker_turn_left1", 3), ("spin", 40), ("cartwheel", 20)]:
         window = read_clip(CLIPS_DIR / f"{name}.json").positions[start:start + 12].round(7)
-        out, angle = canonicalise(window, at_frame=9, skeleton=SKELETON)
+        out, placement = canonicalise(window, at_frame=9, skeleton=SKELETON)
         cases.append({"clip": name, "start": start, "at_frame": 9, "window": window.tolist(),
-                      "angle": angle, "canonical": out.tolist()})
-    return {"about": "a window rotated about +y so that at_frame faces +z, and the angle undone", "cases": cases}
+                      "placement": {"angle": placement.angle, "x": placement.x, "z": placement.z},
+                      "canonical": out.tolist(), "placed_back": place(out, placement).tolist()})
+    return {"about": "a world window -> canonical (root-relative poses, the root channel in the root joint's x and z, "
+                     "turned so at_frame faces +z with the root above the origin there), its placement, and the "
+                     "canonical window placed back in the world (the round trip)", "cases": cases}
 
 
 def direct_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:

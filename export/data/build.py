@@ -17,7 +17,7 @@ from .sources import FPS
 def index_document(clips: list[Clip], data_hash: str) -> dict:
     return {
         "format": "motion-futures/clip-index",
-        "version": 1,
+        "version": 2,
         "fps": FPS,
         "skeleton": {**SKELETON.to_contract(), "offsets": SKELETON.offsets.round(7).tolist()},
         "split_rules": split_rules.RULES,
@@ -25,6 +25,9 @@ def index_document(clips: list[Clip], data_hash: str) -> dict:
         "clips": [
             {"name": c.name, "file": f"{c.name}.json", "action": c.action, "loops": c.loops,
              **({"cycle_frames": c.cycle_frames} if c.cycle_frames else {}),
+             **({"subject": c.subject} if c.subject is not None else {}),
+             **({"take": c.take} if c.take is not None else {}),
+             **({"dataset": c.source["dataset"]} if c.source.get("dataset") else {}),
              "frames": len(c), "role": c.split.role,
              "train": [list(r) for r in c.split.train], "test": [list(r) for r in c.split.test]}
             for c in clips

@@ -21,12 +21,14 @@ class Clip:
     name: str
     action: str
     fps: float
-    positions: np.ndarray                      # [F, J, 3] metres, y-up, no horizontal root translation
+    positions: np.ndarray                      # [F, J, 3] metres, y-up, world frame (root translation kept)
     loops: bool
     split: Split
     source: dict = field(default_factory=dict)
     cycle_frames: int | None = None            # a looping clip stores exactly one cycle
     skeleton: Skeleton = SKELETON
+    subject: int | str | None = None           # the person: the split keeps each on one side
+    take: str | None = None                    # the source's name of the take (CMU "05_02")
     # Rotation-space repeat with blended seams (ops/loop.py); None when only positions exist.
     repeat: Callable[[int], np.ndarray] | None = field(default=None, repr=False, compare=False)
 

@@ -10,6 +10,10 @@ from ..contract import load_json, validate
 from .clip import Clip, Split
 from .skeleton import SKELETON
 
+# Version 2 keeps the horizontal root translation (clips travel); version 1 files have the root above
+# the origin in every frame and read as the same kind of world positions, just without travel.
+CLIP_VERSION = 2
+
 
 def _float32_text(values: np.ndarray) -> list[str]:
     # Shortest decimal that reads back as the same float32, so files are exact and small.
@@ -29,7 +33,7 @@ def positions_json(positions: np.ndarray) -> str:
 def clip_document(clip: Clip) -> dict:
     doc = {
         "format": "motion-futures/clip",
-        "version": 1,
+        "version": CLIP_VERSION,
         "name": clip.name,
         "action": clip.action,
         "fps": clip.fps,
@@ -43,6 +47,10 @@ def clip_document(clip: Clip) -> dict:
     }
     if clip.cycle_frames is not None:
         doc["cycle_frames"] = clip.cycle_frames
+    if clip.subject is not None:
+        doc["subject"] = clip.subject
+    if clip.take is not None:
+        doc["take"] = clip.take
     return doc
 
 
@@ -65,4 +73,5 @@ def read_clip(path: Path) -> Clip:
         positions=np.asarray(doc["positions"], dtype=np.float32).astype(np.float64),
         split=Split(split["role"], [tuple(r) for r in split["train"]], [tuple(r) for r in split["test"]]),
         source=doc.get("source", {}), cycle_frames=doc.get("cycle_frames"),
+        subject=doc.get("subject"), take=doc.get("take"),
     )

@@ -47,8 +47,9 @@ class RotationMotion:
     def slice(self, start: int, stop: int) -> "RotationMotion":
         return RotationMotion(self.times[start:stop], self.root_pos[start:stop], self.local[start:stop])
 
-    def positions(self, skeleton: Skeleton = SKELETON, keep_horizontal_root: bool = False) -> np.ndarray:
-        """Joint positions [F, J, 3]. Horizontal root translation is removed by default; height is kept."""
+    def positions(self, skeleton: Skeleton = SKELETON, keep_horizontal_root: bool = True) -> np.ndarray:
+        """World joint positions [F, J, 3]: clips travel (contract version 2). keep_horizontal_root=False
+        puts the root above the origin in every frame (what version 1 clips held)."""
         root = self.root_pos.copy()
         if not keep_horizontal_root:
             root[:, [0, 2]] = 0.0

@@ -13,15 +13,16 @@ The TypeScript twin is web/src/motion/retarget.ts; contract/vectors/retarget.jso
 4. Walk the project skeleton from the root: each joint = its parent + the project bone length
    (|SKELETON.offsets|) x the unit direction from the parent's source point to the joint's. So
    each bone keeps its direction from the source and takes the project's length; proportions of
-   the source body are discarded. The root keeps only its height (horizontal translation is
-   removed, as for the DeepMimic clips), scaled by project leg length / source leg length
-   (hip-knee-ankle, mean over both legs and all frames), so feet that touch the ground in the
-   source still touch it. That ratio also makes units irrelevant: cm, m, inches or CMU's
-   1/0.45-inch units give the same result, with nothing to declare.
+   the source body are discarded. The root keeps its trajectory (height and horizontal travel),
+   scaled by project leg length / source leg length (hip-knee-ankle, mean over both legs and all
+   frames), so feet that touch the ground in the source still touch it and a stride covers the
+   distance a project-sized body would. That ratio also makes units irrelevant: cm, m, inches or
+   CMU's 1/0.45-inch units give the same result, with nothing to declare.
 5. Derived end points, when the source lacks them: the head continues the upper spine
    (neck + head length x unit(neck - chest)); a toe is the ankle plus the project's rest toe
    offset turned to the pelvis heading (forward = up x (right_hip - left_hip), foot flat).
-6. Ground: the whole clip is shifted vertically so that its lowest point is at y = 0.
+6. Ground: the clip's floor is estimated once (export/ops/floor.py: a plane through the contact
+   frames' lowest foot points, robust to a T-pose frame or a glitch) and put at y = 0.
 
 Facing is left as it comes: windows are canonicalised later (ops/facing.py).
 """
@@ -34,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..paths import CONTRACT_DIR
+from ..ops.floor import on_floor
 from .skeleton import SKELETON
 
 FPS = 30.0
@@ -219,7 +221,7 @@ def retarget(points: np.ndarray, names: list[str], frame_time: float, jmap: Join
         raise RetargetError(f"{where}: the source legs have zero length; check the joint map")
 
     out = np.zeros((len(pts), SKELETON.num_joints, 3))
-    out[:, 0, 1] = q["root"][:, 1] * (project_leg / source_leg)
+    out[:, 0] = q["root"] * (project_leg / source_leg)
     for j, (name, parent) in enumerate(zip(SKELETON.names, SKELETON.parents)):
         if parent < 0:
             continue
@@ -240,8 +242,7 @@ def retarget(points: np.ndarray, names: list[str], frame_time: float, jmap: Join
             fwd[flat] = (1.0, 0.0, 0.0)  # hips vertical (lying on the side): no heading; keep +x
             rest = SKELETON.offsets[j]
             out[:, j] = out[:, parent] + rest[0] * _unit(fwd) + rest[1] * np.array([0.0, 1.0, 0.0])
-    out[..., 1] -= out[..., 1].min()
-    return out
+    return on_floor(out)
 
 
 def _unit(v: np.ndarray) -> np.ndarray:

@@ -1,4 +1,5 @@
-"""Fixed-length windows (history + future) cut from the split, canonicalised at the last history frame.
+"""Fixed-length windows (history + future) cut from the split, canonicalised at the last history frame
+(root-relative poses and the root channel, export/ops/facing.py).
 
 Training windows come only from train ranges; a looping train-only clip may be cut from its
 blended repeat, so windows wrap around the loop. Test windows come only from test ranges
@@ -21,7 +22,7 @@ from .skeleton import SKELETON
 class Window:
     clip: str
     action: str
-    positions: np.ndarray      # [T, J, 3], facing +z at frame history-1
+    positions: np.ndarray      # [T, J, 3] canonical: facing +z, root channel at 0, at frame history-1
     frames: np.ndarray         # [T] frame index in the source clip
     mirrored: bool = False
 
@@ -41,7 +42,7 @@ def windows(clips: list[Clip], part: str, length: int, history: int, stride: int
         raise ValueError(f"part must be 'train' or 'test', got {part!r}")
     if not 0 < history < length:
         raise ValueError("history must be between 1 and the window length")
-    out: list[Window] = []
+    cut: list[tuple[Clip, np.ndarray, np.ndarray]] = []       # (clip, world positions, source frames)
     for clip in clips:
         if wrap and _repeatable(clip, part):
             m = len(clip)
@@ -49,20 +50,16 @@ def windows(clips: list[Clip], part: str, length: int, history: int, stride: int
             seq = clip.repeat(cycles)
             for start in range(0, m, stride):
                 idx = np.arange(start, start + length)
-                out.append(_make(clip, seq[idx], idx % m, history))
+                cut.append((clip, seq[idx], idx % m))
             continue
         ranges = clip.split.train if part == "train" else clip.split.test
         for a, b in ranges:
             for start in range(a, b - length + 1, stride):
                 idx = np.arange(start, start + length)
-                out.append(_make(clip, clip.positions[idx], idx, history))
+                cut.append((clip, clip.positions[idx], idx))
+    out = [Window(c.name, c.action, canonicalise(p, history - 1, c.skeleton)[0], idx) for c, p, idx in cut]
     if mirror:
         # Mirror first, then face +z again: the mirror plane is the body's own sagittal plane.
-        out += [Window(w.clip, w.action, canonicalise(mirror_positions(w.positions, SKELETON), history - 1,
-                                                      SKELETON)[0], w.frames, True) for w in out]
+        out += [Window(c.name, c.action, canonicalise(mirror_positions(p, SKELETON), history - 1, SKELETON)[0],
+                       idx, True) for c, p, idx in cut]
     return out
-
-
-def _make(clip: Clip, positions: np.ndarray, frames: np.ndarray, history: int) -> Window:
-    canonical, _ = canonicalise(positions, history - 1, clip.skeleton)
-    return Window(clip.name, clip.action, canonical, frames)

@@ -66,7 +66,7 @@ class RegressionMethod(_DirectMethod):
         m = self.cfg.get("model", {})
         s = data.stats
         return RegressionGRU(J, self.future_frames, int(m.get("hidden", 64)), int(m.get("dct_bases", 10)),
-                             s["pose_mean"], s["pose_std"], s["offset_std"])
+                             s["pose_mean"], s["pose_std"], s["offset_std"], bool(m.get("keep_bones", True)))
 
     def loss(self, model, batch, step):
         pred = model(batch["history"])

@@ -21,6 +21,8 @@ from ..models.kp_gru import KPGRU, KPGRUStep
 from ..models.kp_refine import RefineGCN
 from ..ops import keyposes as kp
 from ..ops.keypose_interpolation import interpolate
+from ..ops.facing import root_relative, split_root
+from ..ops.keypose_travel import facing_velocities, velocity_table
 from ..ops.mirror import mirror_positions
 from ..ops.proximity import NOISE_PER_TEMPERATURE, choose_temperature, face_forward, proximity, softmax
 from .base import GraphDef, Method, TensorSpec, TrainingData
@@ -29,13 +31,21 @@ J = SKELETON.num_joints
 D = len(kp.DURATION_BOUNDS)
 
 
+def train_motions(clips: list[Clip], mirror: bool) -> list[np.ndarray]:
+    """Every train range as a motion carrying the root channel (export/ops/facing.py), and its mirror image."""
+    parts = [part for clip in clips for part in clip.part("train") if len(part)]
+    parts += [mirror_positions(part, SKELETON) for part in parts] if mirror else []
+    return [split_root(part) for part in parts]
+
+
 def cluster_keyposes(clips: list[Clip], threshold: float, mirror: bool) -> np.ndarray:
-    """Every keypose of every train range (extracted per range, as the paper per training motion),
-    each turned to face +z, plus their mirror images: [n, J, 3]."""
+    """Every keypose of every train range (extracted per range, as the paper per training motion, from
+    its root-relative poses), each turned to face +z, plus their mirror images: [n, J, 3]."""
     poses = []
     for clip in clips:
         for part in clip.part("train"):
             if len(part):
+                part = root_relative(split_root(part))
                 poses.append(part[kp.extract(part, threshold)])
     poses = np.concatenate(poses) if poses else np.zeros((0, J, 3))
     out = face_forward(poses)
@@ -140,6 +150,7 @@ class KeyposesMethod(Method):
         self.temperature = choose_temperature(values, self.centres, self.target_top)
         # Table 7's noise, scaled to our units (see NOISE_PER_TEMPERATURE); configurable for ablations.
         self.noise = float(self.cfg.get("loss", {}).get("label_noise", NOISE_PER_TEMPERATURE)) * self.temperature
+        self.root_velocity = self.travel_table(clips)
         top = softmax(proximity(values, self.centres), self.temperature).max(-1)
         self.notes = {"cluster_keyposes": len(values), "centre_distance": centre_distances(values, self.centres),
                       "label_temperature": self.temperature, "mean_top_probability": float(top.mean())}
@@ -148,6 +159,17 @@ class KeyposesMethod(Method):
         self.notes.update(data.notes)
         self.examples = len(data)
         return TrainingData(data.tensors, {}, self.notes)
+
+    def travel_table(self, clips: list[Clip]) -> np.ndarray:
+        """The root channel's velocity per cluster (export/ops/keypose_travel.py) from every train range."""
+        segments = []
+        for motion in train_motions(clips, self.mirror):
+            poses = root_relative(motion)
+            keys = kp.extract(poses, self.threshold)
+            labels, _ = kp.nearest_centre(face_forward(poses[keys]), self.centres)
+            steps = facing_velocities(motion)
+            segments += [(int(labels[i + 1]), steps[keys[i]:keys[i + 1]]) for i in range(len(keys) - 1)]
+        return velocity_table(segments, self.clusters)
 
     def sequences(self, clips: list[Clip], part: str) -> TrainingData:
         """Observed and future keypose sequences (and refinement pairs) of every window of `part`;
@@ -189,7 +211,8 @@ class KeyposesMethod(Method):
 
     def _sequence(self, w: Window) -> dict:
         n, r = self.history_frames, self.refine_frames
-        hist, future = w.positions[:n], w.positions[n - 1:]            # the present is in both
+        poses = root_relative(w.positions)                             # keyposes act on root-relative poses
+        hist, future = poses[:n], poses[n - 1:]                        # the present is in both
         # Observed keyposes: from the history's own frames, labelled, pruned (as the predictors do).
         obs = kp.extract(hist, self.threshold)
         obs_values = face_forward(hist[obs])
@@ -251,7 +274,7 @@ class KeyposesMethod(Method):
         gru = KPGRU(self.clusters, D, int(m.get("hidden", 48)), int(m.get("layers", 3)), centre_prox,
                     self.temperature, self.noise)
         refine = RefineGCN(J, self.refine_frames + 1, int(rf.get("bases", 20)), int(rf.get("hidden", 32)),
-                           int(rf.get("blocks", 1)), int(rf.get("ramp_frames", 10)))
+                           int(rf.get("blocks", 1)), int(rf.get("ramp_frames", 10)), bool(m.get("keep_bones", True)))
         return KeyposesNet(gru, refine, centres)
 
     def teacher_probability(self, step: int) -> float:
@@ -337,8 +360,11 @@ class KeyposesMethod(Method):
         return {"centres": {"format": "motion-futures/keypose-centres", "version": 1,
                             "about": "k-means centres of the training keyposes, each facing +z, metres [K][J][3]; "
                                      "duration classes: half-open frame intervals [bounds[c], bounds[c+1]) "
-                                     "and the length each stands for",
+                                     "and the length each stands for; root_velocity [K][2]: metres per frame "
+                                     "(x sideways, z forward) a segment leading to a keypose of that "
+                                     "cluster moves the root (export/ops/keypose_travel.py)",
                             "clusters": int(c.shape[0]), "joints": int(c.shape[1]),
                             "centres": c.tolist(),
+                            "root_velocity": self.root_velocity.tolist(),
                             "duration_classes": {"bounds": list(kp.DURATION_BOUNDS),
                                                  "lengths": list(kp.DURATION_LENGTHS)}}}

@@ -62,7 +62,7 @@ class LcpVaeMethod(Method):
             self.rec_weight = data.stats["pose_std"].square()
         return LcpVae(self.variant, J, self.history_frames, self.future_frames, int(m.get("hidden", 64)),
                       int(m.get("embed", 64)), int(m.get("latent", 16)), data.stats["pose_mean"],
-                      data.stats["pose_std"])
+                      data.stats["pose_std"], bool(m.get("keep_bones", True)))
 
     def schedule(self, step: int) -> tuple[float, float]:
         """(teacher-forcing probability, KL weight lambda) at a training step."""

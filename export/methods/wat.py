@@ -17,6 +17,7 @@ from ..data.skeleton import SKELETON
 from ..data.windows import windows
 from ..models.wat import DecoderGraph, PriorGraph, RolloutDecoderGraph, WatRNN, kl_divergence
 from ..ops.dct_smoothness import smoothness, smoothness_loss
+from ..ops.facing import root_relative
 from ..ops.transitions import build_bank, cached_repeats, transition_rate
 from ..ops.variance_stop import variance_curve
 from .base import GraphDef, Method, TensorSpec, TrainingData
@@ -27,7 +28,7 @@ J = SKELETON.num_joints
 def smoothness_flag_threshold(clips: list[Clip], l: int, m: int, percentile: float) -> tuple[float, np.ndarray]:
     """A high percentile of Eq. 4 over every real 2L-frame span of the training data: a predicted
     transition rougher than that is rougher than almost all real motion. -> (threshold, all values)."""
-    values = np.asarray([smoothness(w.positions[:l], w.positions[l:], m)
+    values = np.asarray([smoothness(*np.split(root_relative(w.positions), [l]), m)
                          for w in windows(clips, "train", 2 * l, l)])
     return float(np.percentile(values, percentile)), values
 
@@ -60,7 +61,8 @@ class WatMethod(Method):
         # Flag threshold: the 95th percentile of Eq. 4 over real 2L-frame training spans (0.045 m^2). It
         # flags 81% of the hard cuts between training pairs; the 99th (0.115) would flag only 62%.
         self.smooth = {"l": 10, "m": 5, "flag_percentile": 95, **cfg.get("smoothness", {})}
-        self.weights = {"rec": 100.0, "smooth": 100.0, "kl": 1.0, **cfg.get("loss", {})}
+        # root: the root channel's path error counts like the pose error of the joints (square metres).
+        self.weights = {"rec": 100.0, "smooth": 100.0, "kl": 1.0, "root": 1.0, **cfg.get("loss", {})}
         self.bank = self.pairs = None
         self.calibration: dict | None = None
 
@@ -124,10 +126,20 @@ class WatMethod(Method):
         action = nn.functional.one_hot(self.bank["action"][batch["instance"]], len(self.actions)).float()
         frames, length, target, mask = self.targets(batch["instance"], batch["t0"], int(self.tr["padding"]))
         pred, mu, logvar, prior_mu, prior_logvar = model(history, action, frames, length.clamp(max=self.future_frames))
-        per_frame = (pred - target).pow(2).sum((-1, -2))                       # ||y_hat - y||^2 per frame
+        # Eq. 7 on root-relative poses, plus the root channel's path since the instance began: a cross
+        # pair's instance starts wherever the unsupervised transition left the root, so its path is
+        # compared from its first frame T0 on (a same pair's from the history's last frame, T0 = 0).
+        per_frame = (root_relative(pred) - root_relative(target)).pow(2).sum((-1, -2))   # ||y_hat - y||^2
+        t0 = batch["t0"].clamp(max=self.future_frames - 1)
+        rows = torch.arange(len(t0))
+        cross = (t0 > 0)[:, None, None]
+        path_pred = pred[:, :, 0, [0, 2]] - torch.where(cross, pred[rows, t0, 0][:, None, [0, 2]], 0.0)
+        path_true = target[:, :, 0, [0, 2]] - torch.where(cross, target[rows, t0, 0][:, None, [0, 2]], 0.0)
+        per_frame = per_frame + self.weights["root"] * (path_pred - path_true).pow(2).sum(-1)
         rec = ((per_frame * mask).sum(1) / mask.sum(1).clamp(min=1)).mean()    # Eq. 7, 1/(T+P) per pair
         l = self.smooth["l"]
-        smooth = smoothness_loss(history[:, -l:], pred[:, :l], self.smooth["m"]).mean()   # Eq. 4
+        smooth = smoothness_loss(root_relative(history[:, -l:]), root_relative(pred[:, :l]),
+                                 self.smooth["m"]).mean()                                   # Eq. 4
         kl = kl_divergence(mu, logvar, prior_mu, prior_logvar).mean()                      # Eq. 2
         w = self.weights
         total = w["rec"] * rec + w["smooth"] * smooth + w["kl"] * kl                        # Eq. 6
@@ -204,7 +216,7 @@ class WatMethod(Method):
             mu, logvar, _ = model.prior_params(history, action)
             z = mu + (0.5 * logvar).exp() * torch.randn(mu.shape, generator=gen)
             future = model.decode_from(z, history, action).numpy()
-            curves += [variance_curve(f, q) for f in future]
+            curves += [variance_curve(root_relative(f), q) for f in future]
             lengths.append(self.bank["length"][ii].numpy())
             t0s.append(t0.numpy())
         lengths, t0s = np.concatenate(lengths), np.concatenate(t0s)
@@ -264,7 +276,8 @@ def measure_stops(method: WatMethod, model: nn.Module, clips: list[Clip], k: int
         mu, logvar, _ = model.prior_params(hist, action)
         z = mu + (0.5 * logvar).exp() * torch.randn(mu.shape, generator=gen)
         future = model.decode_from(z, hist, action).numpy()
-        walk.append(stop_lengths(np.stack([variance_curve(f, q) for f in future]), np.array([delta]), t_min, t_max)[0])
+        walk.append(stop_lengths(np.stack([variance_curve(root_relative(f), q) for f in future]), np.array([delta]),
+                                 t_min, t_max)[0])
     walk = np.stack(walk, 1)                                             # [histories, k]
     cycle = walkers[0].cycle_frames or len(walkers[0])
     out["walker"] = {"histories": len(hist), "cycle_frames": int(cycle), **_stop_fractions(walk.ravel(), t_min, t_max),

@@ -60,6 +60,10 @@ class RolloutGraph(nn.Module):
     def rollout(self) -> GruRollout:
         raise NotImplementedError
 
+    def finish(self) -> nn.Module | None:
+        """A module applied to the rollout's frames [B, steps, *frame_shape] (e.g. KeepBones), or None."""
+        return None
+
 
 class RolloutSetup(nn.Module):
     """`setup` as a module of its own, for the exporter."""

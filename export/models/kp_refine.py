@@ -12,6 +12,7 @@ import torch
 from torch import nn
 
 from ..ops.dct import dct_basis
+from .keep_bones import KeepBones
 
 
 class GraphConv(nn.Module):
@@ -28,9 +29,12 @@ class GraphConv(nn.Module):
 
 
 class RefineGCN(nn.Module):
-    def __init__(self, joints: int, frames: int, bases: int, hidden: int, blocks: int, ramp_frames: int):
+    def __init__(self, joints: int, frames: int, bases: int, hidden: int, blocks: int, ramp_frames: int,
+                 keep_bones: bool = True):
         """`frames` includes the present pose at index 0; the output is the frames after it."""
         super().__init__()
+        # The last layer (models/keep_bones.py): refined bones keep the skeleton's lengths.
+        self.keep_bones = KeepBones() if keep_bones else None
         nodes = 3 * joints
         self.register_buffer("dct", torch.from_numpy(dct_basis(frames, bases)).float())   # [frames, bases]
         # The correction grows from 0 at the present over `ramp_frames`, so the refined future still
@@ -51,5 +55,5 @@ class RefineGCN(nn.Module):
         for g1, g2 in self.blocks:
             h = h + torch.tanh(g2(torch.tanh(g1(h))))
         correction = self.out(h) @ self.dct.T                         # [B, 3J, frames]
-        y = x + correction * self.ramp
-        return y.transpose(1, 2).reshape(b, f, j, 3)[:, 1:]
+        y = (x + correction * self.ramp).transpose(1, 2).reshape(b, f, j, 3)[:, 1:]
+        return y if self.keep_bones is None else self.keep_bones(y)

@@ -15,6 +15,7 @@ from torch import nn
 from torch.nn import functional as F
 
 from .gru_rollout import GruRollout, RolloutGraph
+from .keep_bones import KeepBones
 
 VARIANTS = {"lcp": 4, "cvae_h": 2, "cvae_zc": 3}   # variant -> row of Table 4
 # sigma > 0 strictly: the KLs of Eqs. 5-6 take log sigma.
@@ -96,8 +97,11 @@ class PoseDecoder(nn.Module):
 
 class LcpVae(nn.Module):
     def __init__(self, variant: str, joints: int, history_frames: int, future_frames: int,
-                 hidden: int, embed: int, latent: int, pose_mean: torch.Tensor, pose_std: torch.Tensor):
+                 hidden: int, embed: int, latent: int, pose_mean: torch.Tensor, pose_std: torch.Tensor,
+                 keep_bones: bool = True):
         super().__init__()
+        # The data decoder's last layer (models/keep_bones.py): bones keep the skeleton's lengths.
+        self.keep_bones = KeepBones() if keep_bones else None
         if variant not in VARIANTS:
             raise ValueError(f"unknown LCP-VAE variant {variant!r}; known: {sorted(VARIANTS)}")
         self.variant, self.joints = variant, joints
@@ -136,6 +140,10 @@ class LcpVae(nn.Module):
 
     def denormalise(self, x: torch.Tensor) -> torch.Tensor:
         return (x * self.pose_std + self.pose_mean).reshape(*x.shape[:-1], self.joints, 3)
+
+    def finish(self, future: torch.Tensor) -> torch.Tensor:
+        """Decoded future [B, T, J, 3] metres -> the same with the skeleton's bone lengths."""
+        return future if self.keep_bones is None else self.keep_bones(future)
 
     def condition(self, history: torch.Tensor) -> dict[str, torch.Tensor]:
         """history [B, N, J, 3] metres -> h_t, and mu_c, sigma_c when there is a CS-VAE."""
@@ -186,7 +194,8 @@ class LcpVae(nn.Module):
         else:
             out["mu"], out["sigma"] = self.lcp_encode(torch.cat([h_T, z_c], -1))
             z, c = out["mu"] + out["sigma"] * torch.randn_like(out["mu"]), z_c
-        out["future_hat"] = self.decode(z, history[:, -1], c, x_fut, teacher_forcing)
+        decoded = self.decode(z, history[:, -1], c, x_fut, teacher_forcing)
+        out["future_hat"] = self.normalise(self.finish(self.denormalise(decoded)))
         out["future_norm"] = x_fut
         return out
 
@@ -216,10 +225,13 @@ class DecoderGraph(RolloutGraph):
         self.model = model
 
     def forward(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
-        return self.model.denormalise(self.model.decode(z, last_pose, c))
+        return self.model.finish(self.model.denormalise(self.model.decode(z, last_pose, c)))
 
     def setup(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
         return self.model.rollout_setup(z, last_pose, c)
 
     def rollout(self) -> GruRollout:
         return self.model.rollout()
+
+    def finish(self) -> nn.Module | None:
+        return self.model.keep_bones

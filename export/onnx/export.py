@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import onnx
+import onnx.compose
 import onnxruntime as ort
 import torch
 
@@ -83,7 +84,18 @@ def to_onnx(graph: GraphDef) -> bytes:
         rollout = module.rollout()
         setup_outputs = ["setup_seed", "setup_h0"] + (["setup_context"] if rollout.context_size else [])
         model = _torch_export(RolloutSetup(module), graph.example_inputs, inputs, setup_outputs)
-        model = append_rollout(model, rollout, graph.outputs[0].name)
+        finish = module.finish()
+        out = graph.outputs[0].name
+        model = append_rollout(model, rollout, out if finish is None else "rollout_raw")
+        if finish is not None:
+            # The finishing layer is exported by torch on its own and joined to the rollout's output.
+            frames = torch.zeros(2, rollout.steps, *rollout.frame_shape)
+            tail = _torch_export(finish.eval(), (frames,), ["frames"], [out])
+            model = onnx.compose.merge_models(model, tail, io_map=[("rollout_raw", "frames")], prefix2="finish_")
+            for o in model.graph.output:
+                o.name = out if o.name == "finish_" + out else o.name
+            for node in model.graph.node:
+                node.output[:] = [out if n == "finish_" + out else n for n in node.output]
     else:
         model = _torch_export(module, graph.example_inputs, inputs, [s.name for s in graph.outputs])
     model = _strip(model)

@@ -18,7 +18,7 @@ from scipy.spatial.distance import cdist
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.windows import _repeatable, windows  # the split's rule for which loops may wrap
-from .facing import canonicalise
+from .facing import canonicalise, root_relative, split_root
 from .mirror import mirror_positions
 
 
@@ -54,7 +54,7 @@ def transition_rate(clips: list[Clip], statistic: str = "median") -> float:
     for clip in clips:
         period = loop_period(clip)
         for a, b in clip.split.train:
-            x = clip.positions[a:b].reshape(b - a, -1).astype(np.float64)
+            x = root_relative(split_root(clip.positions[a:b])).reshape(b - a, -1)   # poses, not travel
             i, j = np.triu_indices(b - a, 1)
             frames = j - i
             if period:

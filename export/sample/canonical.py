@@ -1,18 +1,20 @@
-"""Into and out of the canonical frame: each graph call sees a history facing +z at its last frame."""
+"""Into and out of the canonical frame: each graph call sees a history facing +z at its last frame,
+with root-relative poses and the root channel (export/ops/facing.py), and its futures go back to the
+world where the history stands."""
 from __future__ import annotations
 
 import numpy as np
 
 from ..data.skeleton import SKELETON
-from ..ops.facing import canonicalise, rotate_about_y
+from ..ops.facing import Placement, canonicalise, place
 
 
-def to_canonical(history: np.ndarray) -> tuple[np.ndarray, float]:
-    """history [N, J, 3] -> (canonical float32 [N, J, 3], angle to undo)."""
-    canon, angle = canonicalise(history, len(history) - 1, SKELETON)
-    return canon.astype(np.float32), angle
+def to_canonical(history: np.ndarray) -> tuple[np.ndarray, Placement]:
+    """history [N, J, 3] (world) -> (canonical float32 [N, J, 3], its placement)."""
+    canon, placement = canonicalise(history, len(history) - 1, SKELETON)
+    return canon.astype(np.float32), placement
 
 
-def from_canonical(frames: np.ndarray, angle: float) -> np.ndarray:
-    """Back to the caller's frame, as float32 like the graphs' outputs (and the browser's arrays)."""
-    return rotate_about_y(np.asarray(frames, dtype=np.float64), angle).astype(np.float32)
+def from_canonical(frames: np.ndarray, placement: Placement) -> np.ndarray:
+    """Back to the caller's world frame, as float32 like the graphs' outputs (and the browser's arrays)."""
+    return place(np.asarray(frames, dtype=np.float64), placement).astype(np.float32)

@@ -17,9 +17,9 @@ class DirectPredictor(Predictor):
         out = []
         while sum(len(o) for o in out) < horizon:
             # Each call sees its own history facing +z (the recursion re-canonicalises).
-            canon, angle = to_canonical(frames[-n:])
+            canon, placement = to_canonical(frames[-n:])
             future = self.runner.run("predict", {"history": canon[None]})["future"][0]
-            future = from_canonical(future, angle)
+            future = from_canonical(future, placement)
             out.append(future)
             frames = np.concatenate([frames, future])
         future = np.concatenate(out)[:horizon]

@@ -16,7 +16,8 @@ import numpy as np
 
 from ..data.skeleton import SKELETON
 from ..ops import keyposes as kp
-from ..ops.facing import canonicalise, rotate_about_y
+from ..ops.facing import canonicalise, place, root_relative, rotate_about_y, split_root
+from ..ops.keypose_travel import travel
 from ..ops.keypose_interpolation import interpolate, keypose_times
 from ..ops.proximity import face_forward, proximity, sample_index, softmax
 from ..paths import MODELS_DIR
@@ -25,35 +26,46 @@ from .predictor import Predictor
 from .request import PredictError, Prediction, Request, horizon_frames
 
 
-def read_centres(path: Path, clusters: int, joints: int) -> np.ndarray:
-    """The centres file [K][J][3], checked against the manifest's cluster count."""
+def read_centres(path: Path, clusters: int, joints: int) -> tuple[np.ndarray, np.ndarray]:
+    """The centres file: centres [K][J][3] and the root velocity table [K][2], checked against the
+    manifest's cluster count."""
     if not path.exists():
         raise FileNotFoundError(f"{path}: keypose centres file missing; run `make models`")
     try:
         doc = json.loads(path.read_text())
         centres = np.asarray(doc["centres"], dtype=np.float64)
+        velocity = np.asarray(doc["root_velocity"], dtype=np.float64)
     except (ValueError, KeyError, TypeError) as e:
         raise ValueError(f"{path}: not a keypose centres file ({e})") from e
     if centres.shape != (clusters, joints, 3):
         raise ValueError(f"{path}: centres must be [{clusters}][{joints}][3], got {list(centres.shape)}")
-    return centres
+    if velocity.shape != (clusters, 2):
+        raise ValueError(f"{path}: root_velocity must be [{clusters}][2], got {list(velocity.shape)}")
+    return centres, velocity
 
 
 class KeyposesPredictor(Predictor):
     def __init__(self, entry: dict, manifest: dict, models_dir: Path = MODELS_DIR, precision: str = "float32"):
         super().__init__(entry, manifest, models_dir, precision)
         self.models_dir = Path(models_dir)
-        self._centres: np.ndarray | None = None
+        self._file: tuple[np.ndarray, np.ndarray] | None = None
 
-    @property
-    def centres(self) -> np.ndarray:
-        if self._centres is None:
+    def _centres_file(self) -> tuple[np.ndarray, np.ndarray]:
+        if self._file is None:
             name = self.entry.get("files", {}).get("centres")
             if not name:
                 raise ValueError(f"model {self.entry['id']} names no keypose centres file in the manifest")
-            self._centres = read_centres(self.models_dir / name, self.params["keyposes"]["clusters"],
-                                         len(self.manifest["skeleton"]["joints"]))
-        return self._centres
+            self._file = read_centres(self.models_dir / name, self.params["keyposes"]["clusters"],
+                                      len(self.manifest["skeleton"]["joints"]))
+        return self._file
+
+    @property
+    def centres(self) -> np.ndarray:
+        return self._centres_file()[0]
+
+    @property
+    def root_velocity(self) -> np.ndarray:
+        return self._centres_file()[1]
 
     def _control(self, req: Request, cid: str):
         spec = next(c for c in self.entry["controls"] if c["id"] == cid)
@@ -62,7 +74,7 @@ class KeyposesPredictor(Predictor):
     def observe(self, history: np.ndarray) -> dict:
         """The history's keyposes: frames, labels after pruning, and the KP-GRU's inputs."""
         p, k = self.params, self.params["keyposes"]
-        hist = history[-p["history_frames"]:]
+        hist = root_relative(split_root(history[-p["history_frames"]:]))     # keyposes act on poses
         frames = kp.extract(hist, k["threshold"])
         values = face_forward(hist[frames])
         labels, _ = kp.nearest_centre(values, self.centres)
@@ -132,14 +144,19 @@ class KeyposesPredictor(Predictor):
                                            "duration": eye[[cs[-1] for cs in classes]], "hidden": h})
             logits, dlogits, h = out["label_logits"], out["duration_logits"], out["next_hidden"]
 
-        canon, angle = canonicalise(history[-p["history_frames"]:], p["history_frames"] - 1, SKELETON)
-        present = canon[-1]
+        canon, placement = canonicalise(history[-p["history_frames"]:], p["history_frames"] - 1, SKELETON)
+        present = root_relative(canon[-1])
         futures = np.stack([interpolate(present, centres[labels[s]], [lengths[c] for c in classes[s]], need)
                             for s in range(k)])
         if refine:
             seq = np.concatenate([np.repeat(present[None, None], k, 0), futures[:, :r]], 1).astype(np.float32)
             futures = self.runner.run("refine", {"sequence": seq})["refined"].astype(np.float64)
-        futures = rotate_about_y(futures[:, :horizon], angle).astype(np.float32)
+        futures = futures[:, :horizon]
+        # The root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z.
+        for s in range(k):
+            futures[s, :, 0, [0, 2]] = travel(labels[s], [lengths[c] for c in classes[s]], self.root_velocity,
+                                              horizon).T
+        futures = place(futures, placement).astype(np.float32)
 
         samples, ghost_frames, ghost_poses = [], [], []
         for s in range(k):
@@ -149,7 +166,8 @@ class KeyposesPredictor(Predictor):
             samples.append({"length": horizon, "stopped": False, "segments": [{"start": 0, "length": horizon}],
                             "marks": marks, "labels": labels[s][:shown]})
             ghost_frames.append(marks)
-            ghost_poses.append(rotate_about_y(centres[labels[s][:shown]], angle).astype(np.float32))
+            at = futures[s, np.asarray(marks, dtype=np.int64), :1] * np.array([1.0, 0.0, 1.0])   # root's ground point
+            ghost_poses.append((rotate_about_y(centres[labels[s][:shown]], placement.angle) + at).astype(np.float32))
         readouts = [{"label": "observed keyposes", "value": len(obs["frames"])},
                     {"label": "keyposes per future", "value": float(np.mean([len(g) for g in ghost_frames]))}]
         return Prediction(futures, np.full(k, horizon), samples, readouts=readouts, margins=margins,

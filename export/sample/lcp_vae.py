@@ -78,7 +78,7 @@ class LcpVaePredictor(Predictor):
         pieces = []
         done = 0
         while done < horizon:
-            canon, angles = zip(*(to_canonical(h) for h in recent))
+            canon, placements = zip(*(to_canonical(h) for h in recent))
             canon = np.stack(canon)
             cond = self.runner.run("condition", {"history": canon})
             z, c = sample_latents(prng, cond, k, scale, self.params)
@@ -87,8 +87,8 @@ class LcpVaePredictor(Predictor):
             if c_spec:
                 feeds["c"] = c
             future = self.runner.run("decoder", feeds)["future"]
-            angles = np.broadcast_to(np.asarray(angles), (k,))
-            future = np.stack([from_canonical(f, a) for f, a in zip(future, angles)])
+            placements = placements * k if len(placements) == 1 else placements
+            future = np.stack([from_canonical(f, a) for f, a in zip(future, placements)])
             pieces.append(future)
             done += step
             joined = np.concatenate([np.broadcast_to(recent, (k,) + recent.shape[1:]), future], 1)

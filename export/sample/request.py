@@ -1,6 +1,6 @@
 """The predictor contract in Python, twin of web/src/predictor/types.ts.
 
-A history (world frame, root-centred, [frames, J, 3] metres) and a request go in; K futures
+A history (world frame, [frames, J, 3] metres, the root travelling) and a request go in; K futures
 with per-sample lengths and diagnostics come out. Requests are checked against the model's
 manifest entry, and every problem is a PredictError that says what is wrong.
 """

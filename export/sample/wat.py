@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..ops.dct_smoothness import smoothness
+from ..ops.facing import root_relative
 from ..ops.variance_stop import first_stop, variance_curve
 from ..rng import Prng
 from .canonical import from_canonical, to_canonical
@@ -47,7 +48,7 @@ class WatPredictor(Predictor):
         segments = [[] for _ in range(k)]
         margins = []
         for action in req.actions:
-            canon, angles = zip(*(to_canonical(s[-n:]) for s in seqs))
+            canon, placements = zip(*(to_canonical(s[-n:]) for s in seqs))
             canon = np.stack(canon)
             onehot = np.zeros((k, len(order)), np.float32)
             onehot[:, order.index(action)] = 1
@@ -55,17 +56,18 @@ class WatPredictor(Predictor):
             z = sample_latent(prior["prior_mean"], prior["prior_logvar"], prng.normals((k, d)))
             future = self.runner.run("decoder", {"z": z, "history": canon, "action": onehot})["future"]
             for i in range(k):
-                curve = variance_curve(future[i], q)
+                # Eq. 8 and Eq. 4 act on root-relative poses: a walk that keeps walking is not static.
+                curve = variance_curve(root_relative(future[i]), q)
                 stop = first_stop(curve, delta, t_min, t_max)
                 margins.append(stop.margin)
-                s = smoothness(canon[i, -l:], future[i, :l], m)
+                s = smoothness(root_relative(canon[i, -l:]), root_relative(future[i, :l]), m)
                 start = sum(len(x) for x in parts[i])
                 segments[i].append({"start": start, "length": stop.length, "action": action, "stopped": stop.stopped,
                                     "smoothness": s, "flagged": bool(s > flag)})
                 # v at each kept frame (window starting there); the last Q-1 frames of a sample that
                 # never stopped have no full window and repeat the last value.
                 series[i] += [float(curve[min(f, len(curve) - 1)]) for f in range(stop.length)]
-                world = from_canonical(future[i, :stop.length], angles[i])
+                world = from_canonical(future[i, :stop.length], placements[i])
                 parts[i].append(world)
                 seqs[i] = np.concatenate([seqs[i], world])
         totals = np.asarray([sum(len(x) for x in ps) for ps in parts])

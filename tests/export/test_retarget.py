@@ -9,6 +9,7 @@ from export.data.bvh import joint_positions, read_bvh
 from export.data.retarget import (MIN_FRAMES, RetargetError, UnknownSkeletonError, load_map, resample_points,
                                   retarget)
 from export.data.skeleton import SKELETON
+from export.ops.floor import CONTACT_BAND, foot_height
 
 FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
 L = {n: float(np.linalg.norm(o)) for n, o in zip(SKELETON.names, SKELETON.offsets)}
@@ -72,14 +73,23 @@ def test_derived_head_and_toes():
     np.testing.assert_allclose(out[0], want, atol=1e-9)
 
 
-def test_walk_keeps_project_bone_lengths_root_above_origin_and_feet_on_the_ground():
+def test_walk_keeps_project_bone_lengths_travels_and_keeps_its_feet_on_the_floor():
     out = run("walk.bvh")
     assert out.shape == (46, 18, 3)  # 151 frames at 100 Hz = 1.5 s
     lengths = np.stack([np.linalg.norm(out[:, j] - out[:, p], axis=-1) for p, j in SKELETON.bones], axis=1)
     np.testing.assert_allclose(lengths, np.broadcast_to(SKELETON.bone_lengths(), lengths.shape), atol=1e-12)
-    np.testing.assert_allclose(out[:, 0, [0, 2]], 0.0, atol=1e-12)
-    assert abs(out[..., 1].min()) < 1e-12
-    # the walk travels along +z in the file, yet the clip stays in place; the body faces about +z
+    # the walk travels along +z in the file, and so does the clip: the root's path scaled by the leg ratio
+    bvh = read_bvh(FIXTURES / "walk.bvh")
+    src = joint_positions(bvh)
+    hips = src[:, bvh.names.index("Hips")]
+    assert out[-1, 0, 2] - out[0, 0, 2] > 1.0
+    np.testing.assert_allclose(out[:, 0, 0], 0.0, atol=1e-9)
+    scale = (out[-1, 0, 2] - out[0, 0, 2]) / (hips[-1, 2] - hips[0, 2])
+    assert 0.04 < scale < 0.08   # CMU units (0.0564 m) to metres, times a leg ratio near 1
+    # feet on the floor: the lower of ankle and toe touches y = 0 within the contact band
+    feet = foot_height(out)
+    assert abs(np.median(feet)) < 0.01 and feet.min() > -CONTACT_BAND
+    # the body faces about +z
     assert np.all(np.abs(out[:, SKELETON.index("right_hip"), 0] - out[:, SKELETON.index("left_hip"), 0]) > 0.1)
 
 

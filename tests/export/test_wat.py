@@ -2,6 +2,8 @@
 import dataclasses
 
 import numpy as np
+
+from export.ops.facing import root_relative, split_root
 import pytest
 import torch
 
@@ -46,10 +48,11 @@ def tiny(subset, tmp_path_factory):
 # --- transitions (section 3.2, supplement 9) ---------------------------------------------------
 
 def _line_clip(clip, speed):
-    """A copy of `clip` whose joints all move at `speed` metres per frame along x (not a loop)."""
+    """A copy of `clip` whose pose changes at `speed` metres per frame (every joint but the root rises;
+    k measures root-relative poses, so the pose must change, not the place)."""
     f = len(clip)
     pos = np.zeros((f, 18, 3))
-    pos[:, :, 0] = speed * np.arange(f)[:, None] / np.sqrt(18)
+    pos[:, 1:, 1] = speed * np.arange(f)[:, None] / np.sqrt(17)
     return dataclasses.replace(clip, positions=pos, loops=False, repeat=None, split=Split("train", [(0, f)], []))
 
 
@@ -60,7 +63,7 @@ def test_k_is_frames_per_metre_and_loops_count_time_the_short_way(clips):
     walk = clips["walk"]
     assert loop_period(walk) == len(walk) and loop_period(clips["spin"]) is None  # spin has a test tail
     # Frames 0 and m-1 of a loop are one frame apart the short way round, not m-1.
-    x = walk.positions.reshape(len(walk), -1)
+    x = root_relative(split_root(walk.positions)).reshape(len(walk), -1)
     long_way = (len(walk) - 1) / np.linalg.norm(x[0] - x[-1])
     assert long_way > 5 * transition_rate([walk], "mean")
     with pytest.raises(ValueError, match="statistic"):
@@ -235,11 +238,13 @@ def test_stops_follow_eq8_on_the_decoder_output_and_recursion_uses_the_last_n_fr
         prior = runner.run("prior", {"history": canon, "action": onehot(action)})
         z = sample_latent(prior["prior_mean"], prior["prior_logvar"], prng.normals((2, p["latent_size"])))
         future = runner.run("decoder", {"z": z, "history": canon, "action": onehot(action)})["future"][1]
-        stop = first_stop(variance_curve(future, p["stop"]["q"]), p["stop"]["delta"], p["stop"]["min_frames"],
-                          p["future_frames"])
+        # Eq. 8 and Eq. 4 on root-relative poses (export/ops/facing.py)
+        stop = first_stop(variance_curve(root_relative(future), p["stop"]["q"]), p["stop"]["delta"],
+                          p["stop"]["min_frames"], p["future_frames"])
         seg = pred.samples[1]["segments"][step]
         assert seg["start"] == start and seg["length"] == stop.length
-        np.testing.assert_allclose(seg["smoothness"], smoothness(canon[1, -10:], future[:10]), rtol=1e-9)
+        np.testing.assert_allclose(seg["smoothness"], smoothness(root_relative(canon[1, -10:]),
+                                                                 root_relative(future[:10])), rtol=1e-9)
         done = np.concatenate([history, pred.futures[1, :start + stop.length]])
         recent = np.stack([done[-10:].astype(np.float32)] * 2)
         start += stop.length

@@ -11,7 +11,8 @@ export type Range = [number, number];
 
 export interface ClipDoc {
   format: 'motion-futures/clip';
-  version: 1;
+  /** 2 keeps the horizontal root translation (world frame); 1 files have the root above the origin. */
+  version: 1 | 2;
   name: string;
   action: string;
   fps: number;
@@ -20,6 +21,9 @@ export interface ClipDoc {
   skeleton: Skeleton;
   split: { role: Role; train: Range[]; test: Range[] };
   source?: { dataset?: string; file?: string; license?: string };
+  /** The person performing (the split keeps each person on one side), and the source's take name. */
+  subject?: number | string;
+  take?: string;
   positions: number[][][];
 }
 
@@ -29,6 +33,9 @@ export interface ClipIndexEntry {
   action: string;
   loops: boolean;
   cycle_frames?: number;
+  subject?: number | string;
+  take?: string;
+  dataset?: string;
   frames: number;
   role: Role;
   train: Range[];
@@ -37,11 +44,14 @@ export interface ClipIndexEntry {
 
 export interface ClipIndex {
   format: 'motion-futures/clip-index';
-  version: 1;
+  version: 1 | 2;
   fps: number;
   skeleton: Skeleton;
   split_rules: string[];
   data_hash?: string;
+  /** The history the site opens on (a held-out take whose ground truth covers the default horizon). */
+  default?: { clip: string; start: number };
+  notes?: Record<string, string>;
   clips: ClipIndexEntry[];
 }
 

@@ -4,7 +4,7 @@
 // beside the same loss for L + L captured frames of the first clip, which need no join.
 import type { Motion } from '../motion/clip';
 import { window as clipWindow } from '../motion/clip';
-import { canonicalise } from '../motion/facing';
+import { canonicalise, rootRelative } from '../predictor/canonical';
 import { smoothness } from '../sampling/dct-smoothness';
 import { el } from '../ui/dom';
 import type { ExplainerData } from './data';
@@ -58,7 +58,8 @@ export async function mountDctFigure(host: HTMLElement, data: ExplainerData): Pr
     const s = ma.joints * 3;
     const z = joinWindows(clipWindow(ma, ma.frames - l, l), clipWindow(mb, 0, l), l, skeleton);
     // Captured: the first clip's own last 2L frames, canonical at the same join frame.
-    const captured = canonicalise(Float64Array.from(clipWindow(ma, ma.frames - 2 * l, 2 * l)), l - 1, skeleton).canonical;
+    const captured = rootRelative(canonicalise(Float64Array.from(clipWindow(ma, ma.frames - 2 * l, 2 * l)), l - 1, skeleton).canonical,
+      ma.joints);
     const loss = smoothness(z.subarray(0, l * s), z.subarray(l * s), l, s, state.m);
     const lossC = smoothness(captured.subarray(0, l * s), captured.subarray(l * s), l, s, state.m);
     setLoss(`${num(loss * 1e6)} mm²`);

@@ -117,7 +117,7 @@ export async function mountTemperatureFigure(host: HTMLElement, data: ExplainerD
       const m = await data.clip(clip.input.value);
       const start = m.role === 'test' ? 0 : defaultStart(m, n);
       history = { positions: clipWindow(m, start, n), frames: n, joints: m.joints };
-      const centres = await predictor.loadCentres();
+      const { centres } = await predictor.loadCentres();
       const obs = predictor.observe(history, centres);
       // Feed the observed keyposes one step each, as the predictor does before it samples.
       const { layers, hidden, clusters } = p.keyposes;

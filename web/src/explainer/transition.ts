@@ -1,20 +1,21 @@
 // The DCT figure's data (WAT Eq. 4): a transition Z of 2L poses built from real clips, and one
 // coordinate's approximation by the first M DCT bases with the predictor's own dctBasis.
 import type { Skeleton } from '../contract/types';
-import { canonicalise } from '../motion/facing';
+import { canonicalise, rootRelative } from '../predictor/canonical';
 import { dctBasis } from '../sampling/dct-smoothness';
 
 /**
  * tail: the last L frames of one clip, head: the first L of another, both [l * J * 3]. Each part
  * is turned to face +z at the join (the tail at its last frame, the head at its first), as WAT
- * joins a history to an instance of another action in the history's canonical frame; the clips
- * already have their horizontal root translation removed, so only facing differs.
+ * joins a history to an instance of another action in the history's canonical frame. Eq. 4 acts
+ * on root-relative poses (web/src/predictor/canonical.ts), so where each clip stands does not matter.
  */
 export function joinWindows(tail: Float32Array, head: Float32Array, l: number, skeleton: Skeleton): Float64Array {
   const s = skeleton.joints.length * 3;
   if (tail.length !== l * s || head.length !== l * s) throw new RangeError(`joinWindows: need ${l} frames on each side`);
-  const a = canonicalise(Float64Array.from(tail), l - 1, skeleton).canonical;
-  const b = canonicalise(Float64Array.from(head), 0, skeleton).canonical;
+  const j = skeleton.joints.length;
+  const a = rootRelative(canonicalise(Float64Array.from(tail), l - 1, skeleton).canonical, j);
+  const b = rootRelative(canonicalise(Float64Array.from(head), 0, skeleton).canonical, j);
   const z = new Float64Array(2 * l * s);
   z.set(a);
   z.set(b, l * s);

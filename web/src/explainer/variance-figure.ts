@@ -7,7 +7,7 @@
 // Without WAT, the same rule runs on the committed test vectors' pose sequences, and the figure says so.
 import type { ModelEntry } from '../contract/types';
 import { window as clipWindow } from '../motion/clip';
-import { toCanonical } from '../predictor/canonical';
+import { rootRelative, toCanonical } from '../predictor/canonical';
 import type { WatParams } from '../predictor/wat';
 import { Prng } from '../rng/prng';
 import { sampleGaussian } from '../sampling/gaussian';
@@ -146,7 +146,8 @@ async function watCurves(data: ExplainerData, wat: ModelEntry, action: string, s
   const z = sampleGaussian(new Prng(seed), prior.prior_mean.data, prior.prior_logvar.data, K, p.latent_size);
   const out = await runner.run('decoder', { ...feeds, z: { data: z, dims: [K, p.latent_size] } });
   const len = p.future_frames * stride;
-  const curves = Array.from({ length: K }, (_, i) => varianceCurve(out.future.data.subarray(i * len, (i + 1) * len), p.future_frames, stride, p.stop.q));
+  // Eq. 8 on root-relative poses, as the predictor computes it
+  const curves = Array.from({ length: K }, (_, i) => varianceCurve(rootRelative(out.future.data.subarray(i * len, (i + 1) * len), j), p.future_frames, stride, p.stop.q));
   return {
     names: curves.map((_, i) => `sample ${i + 1}`), curves, q: p.stop.q, tMin: p.stop.min_frames, tMax: p.future_frames,
     maxFrames: curves.map(() => p.future_frames),

@@ -16,7 +16,7 @@ export function clipDocuments(s: Shown): ClipDoc[] {
     for (let f = 0; f < s.history.frames; f++) positions.push(frame(s.history.positions, f));
     for (let f = 0; f < fut.frames; f++) positions.push(frame(fut.positions, f));
     const doc: ClipDoc = {
-      format: 'motion-futures/clip', version: 1, name: `${s.name}.${figureName(fut.sample)}`, action: 'prediction', fps: s.fps,
+      format: 'motion-futures/clip', version: 2, name: `${s.name}.${figureName(fut.sample)}`, action: 'prediction', fps: s.fps,
       loops: false, skeleton: { joints: s.skeleton.joints, parents: s.skeleton.parents },
       split: { role: 'test', train: [], test: [[s.history.frames, frames]] },
       source: {

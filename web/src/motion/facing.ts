@@ -1,5 +1,5 @@
-// Canonical facing of a window, decided at one frame (its last history frame).
-// Twin of export/ops/facing.py; contract/vectors/facing.json ties them.
+// Facing: the body's heading at one frame, and turning points about +y. Canonical windows and the
+// root channel are built from these in web/src/predictor/canonical.ts (twin of export/ops/facing.py).
 import type { Skeleton } from '../contract/types';
 
 /** Angle about +y from +z to the body's forward direction at one pose (frame `f` of `pos`). */
@@ -29,10 +29,3 @@ export function rotateAboutY<T extends Float32Array | Float64Array>(pos: T, angl
   return pos;
 }
 
-/** A rotated copy of `window` [F, J, 3] in which frame `atFrame` faces +z, and the angle undone. */
-export function canonicalise<T extends Float32Array | Float64Array>(
-  window: T, atFrame: number, skeleton: Skeleton,
-): { canonical: T; angle: number } {
-  const angle = facingAngle(window, atFrame, skeleton);
-  return { canonical: rotateAboutY(window.slice() as T, -angle), angle };
-}

@@ -3,6 +3,7 @@
 // retarget.json ties the two. In short: joint map -> y-up -> linear resample to 30 Hz -> walk the
 // project skeleton keeping source bone directions with project bone lengths -> ground.
 import type { Skeleton } from '../contract/types';
+import { putOnFloor } from './floor';
 import type { JointMap } from './joint-map';
 
 export const FPS = 30;
@@ -136,7 +137,8 @@ export function retarget(
   const out = new Float64Array(F * J * 3);
   const o = (f: number, j: number) => (f * J + j) * 3;
   const qRoot = q[0]!;
-  for (let f = 0; f < F; f++) out[o(f, 0) + 1] = qRoot[f * 3 + 1] * (projectLeg / sourceLeg);
+  // the root keeps its trajectory (height and travel), scaled like the legs
+  for (let f = 0; f < F; f++) for (let c = 0; c < 3; c++) out[o(f, 0) + c] = qRoot[f * 3 + c] * (projectLeg / sourceLeg);
   const [chest, rHip, lHip] = [at('chest'), at('right_hip'), at('left_hip')];
   for (let j = 1; j < J; j++) {
     const p = skeleton.parents[j];
@@ -177,8 +179,5 @@ export function retarget(
       }
     }
   }
-  let low = Infinity;
-  for (let i = 1; i < out.length; i += 3) low = Math.min(low, out[i]);
-  for (let i = 1; i < out.length; i += 3) out[i] -= low;
-  return { positions: out, frames: F };
+  return { positions: putOnFloor(out, F, skeleton), frames: F };
 }

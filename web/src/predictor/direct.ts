@@ -25,9 +25,9 @@ export class DirectPredictor implements Predictor {
     let done = 0;
     while (done < horizon) {
       if (isCancelled()) throw new Superseded();
-      const { canonical, angle } = toCanonical(frames.slice(frames.length - n * stride), n, skeleton);
+      const { canonical, placement } = toCanonical(frames.slice(frames.length - n * stride), n, skeleton);
       const res = await runner.run('predict', { history: { data: canonical, dims: [1, n, j, 3] } });
-      const future = fromCanonical(res.future.data, angle);
+      const future = fromCanonical(res.future.data, j, placement);
       out.set(future, done * stride);
       done += step;
       const joined = new Float32Array(frames.length + future.length);

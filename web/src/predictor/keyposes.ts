@@ -8,9 +8,9 @@
 import { Prng } from '../rng/prng';
 import { rotateAboutY } from '../motion/facing';
 import { interpolateKeyposes, keyposeTimes } from '../sampling/keypose-interpolation';
-import { durationClass, extractKeyposes, faceForward, labelDistribution, nearestCentre, prune } from '../sampling/keyposes';
+import { durationClass, extractKeyposes, faceForward, labelDistribution, nearestCentre, prune, travel } from '../sampling/keyposes';
 import { sampleIndex } from '../sampling/temperature';
-import { canonicalise } from '../motion/facing';
+import { canonicalise, place, rootRelative, splitRoot } from './canonical';
 import { checkHistory, checkRequest, horizonFrames } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor, type PredictorContext, type SampleInfo, type Tensor,
@@ -31,8 +31,14 @@ export interface Observed {
   duration: Float32Array;
 }
 
+/** The centres file: centres [K][J][3] and the root channel's velocity per cluster [K][2], flat. */
+export interface CentresFile {
+  centres: Float64Array;
+  rootVelocity: Float64Array;
+}
+
 export class KeyposesPredictor implements Predictor {
-  private centres: Promise<Float64Array> | null = null;
+  private centres: Promise<CentresFile> | null = null;
 
   constructor(private readonly ctx: PredictorContext) {}
 
@@ -44,14 +50,14 @@ export class KeyposesPredictor implements Predictor {
     return this.ctx.entry.params as unknown as KeyposesParams;
   }
 
-  /** The centres file [K][J][3] as a flat array, checked against the manifest's cluster count. */
-  loadCentres(): Promise<Float64Array> {
+  /** The centres file, checked against the manifest's cluster count. */
+  loadCentres(): Promise<CentresFile> {
     this.centres ??= (async () => {
       const { entry, skeleton } = this.ctx;
       const file = entry.files?.centres;
       if (!file) throw new Error(`model ${entry.id} names no keypose centres file in the manifest`);
       const text = new TextDecoder().decode(await this.ctx.loadFile(file));
-      let doc: { centres?: unknown };
+      let doc: { centres?: unknown; root_velocity?: unknown };
       try {
         doc = JSON.parse(text);
       } catch (err) {
@@ -63,7 +69,10 @@ export class KeyposesPredictor implements Predictor {
       const ok = Array.isArray(c) && c.length === k && c.every((p) => Array.isArray(p) && p.length === j
         && p.every((x) => Array.isArray(x) && x.length === 3 && x.every((v) => typeof v === 'number')));
       if (!ok) throw new Error(`${file}: centres must be [${k}][${j}][3] numbers`);
-      return Float64Array.from((c as number[][][]).flat(2));
+      const v = doc.root_velocity;
+      const okV = Array.isArray(v) && v.length === k && v.every((r) => Array.isArray(r) && r.length === 2 && r.every((x) => typeof x === 'number'));
+      if (!okV) throw new Error(`${file}: root_velocity must be [${k}][2] numbers`);
+      return { centres: Float64Array.from((c as number[][][]).flat(2)), rootVelocity: Float64Array.from((v as number[][]).flat()) };
     })();
     this.centres.catch(() => { this.centres = null; }); // a failed load may be retried
     return this.centres;
@@ -77,7 +86,8 @@ export class KeyposesPredictor implements Predictor {
     const s = j * 3;
     const n = p.history_frames;
     const k = p.keyposes;
-    const hist = Float64Array.from(history.positions.subarray((history.frames - n) * s));
+    // keyposes act on root-relative poses (canonical.ts)
+    const hist = rootRelative(splitRoot(Float64Array.from(history.positions.subarray((history.frames - n) * s)), j), j);
     const all = extractKeyposes(hist, n, j, k.threshold);
     const values = new Float64Array(all.length * s);
     all.forEach((f, i) => values.set(hist.subarray(f * s, (f + 1) * s), i * s));
@@ -114,7 +124,7 @@ export class KeyposesPredictor implements Predictor {
     const r = p.refine_frames;
     if (horizon > r) throw new PredictError(`the horizon must be at most ${r} frames, got ${horizon}`);
     const need = refine ? r : horizon;
-    const centres = await this.loadCentres();
+    const { centres, rootVelocity } = await this.loadCentres();
     const kk = p.keyposes.clusters;
     const lengths = p.duration_classes.lengths;
     const nd = lengths.length;
@@ -173,8 +183,8 @@ export class KeyposesPredictor implements Predictor {
     }
 
     const n = p.history_frames;
-    const { canonical, angle } = canonicalise(Float64Array.from(history.positions.subarray((history.frames - n) * s)), n - 1, skeleton);
-    const present = canonical.subarray((n - 1) * s);
+    const { canonical, placement } = canonicalise(Float64Array.from(history.positions.subarray((history.frames - n) * s)), n - 1, skeleton);
+    const present = rootRelative(canonical.subarray((n - 1) * s), j);
     const durations = classes.map((cs) => cs.map((c) => lengths[c]));
     let futures = new Float64Array(k * need * s);
     for (let q = 0; q < k; q++) {
@@ -195,8 +205,16 @@ export class KeyposesPredictor implements Predictor {
       frames = r;
     }
     const cut = new Float64Array(k * horizon * s);
-    for (let q = 0; q < k; q++) cut.set(futures.subarray(q * frames * s, (q * frames + horizon) * s), q * horizon * s);
-    const world = Float32Array.from(rotateAboutY(cut, angle));
+    for (let q = 0; q < k; q++) {
+      cut.set(futures.subarray(q * frames * s, (q * frames + horizon) * s), q * horizon * s);
+      // the root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z
+      const path = travel(labels[q], durations[q], rootVelocity, horizon);
+      for (let f = 0; f < horizon; f++) {
+        cut[(q * horizon + f) * s] = path[f * 2];
+        cut[(q * horizon + f) * s + 2] = path[f * 2 + 1];
+      }
+    }
+    const world = Float32Array.from(place(cut, j, placement));
 
     const samples: SampleInfo[] = [];
     const ghostFrames: number[][] = [];
@@ -210,7 +228,15 @@ export class KeyposesPredictor implements Predictor {
       ghostFrames.push(marks);
       const poses = new Float64Array(shown * s);
       labels[q].slice(0, shown).forEach((l, i) => poses.set(centres.subarray(l * s, (l + 1) * s), i * s));
-      ghostPoses.push(Float32Array.from(rotateAboutY(poses, angle)));
+      rotateAboutY(poses, placement.angle);
+      marks.forEach((m, i) => {   // each ghost stands where the root is at its frame
+        const at = (q * horizon + m) * s;
+        for (let jj = 0; jj < j; jj++) {
+          poses[(i * j + jj) * 3] += world[at];
+          poses[(i * j + jj) * 3 + 2] += world[at + 2];
+        }
+      });
+      ghostPoses.push(Float32Array.from(poses));
       shownTotal += shown;
     }
     return {

@@ -11,7 +11,7 @@
 // not exist yet); arithmetic in float64 as mu + (s*sigma)*eps, rounded to float32 for the graph.
 import { Prng } from '../rng/prng';
 import { diversity } from '../sampling/diversity';
-import { fromCanonical, toCanonical } from './canonical';
+import { fromCanonical, toCanonical, type Placement } from './canonical';
 import { checkHistory, checkRequest, horizonFrames } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor,
@@ -96,11 +96,11 @@ export class LcpVaePredictor implements Predictor {
       if (isCancelled()) throw new Superseded();
       const rows = recent.length;
       const canon = new Float32Array(rows * histLen);
-      const angles: number[] = [];
+      const placements: Placement[] = [];
       recent.forEach((h, r) => {
-        const { canonical, angle } = toCanonical(h, n, skeleton);
+        const { canonical, placement } = toCanonical(h, n, skeleton);
         canon.set(canonical, r * histLen);
-        angles.push(angle);
+        placements.push(placement);
       });
       const cond = await runner.run('condition', { history: { data: canon, dims: [rows, n, j, 3] } });
       const { z, c } = sampleLatents(prng, cond, k, scale, params);
@@ -118,7 +118,7 @@ export class LcpVaePredictor implements Predictor {
       const res = await runner.run('decoder', feeds);
       const next: Float32Array[] = [];
       for (let i = 0; i < k; i++) {
-        const future = fromCanonical(res.future.data.slice(i * futLen, (i + 1) * futLen), angles[rows === 1 ? 0 : i]);
+        const future = fromCanonical(res.future.data.slice(i * futLen, (i + 1) * futLen), j, placements[rows === 1 ? 0 : i]);
         all.set(future, (i * calls + call) * futLen);
         const joined = new Float32Array(histLen + futLen);
         joined.set(recent[rows === 1 ? 0 : i]);

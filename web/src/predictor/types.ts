@@ -12,7 +12,7 @@ export interface GraphRunner {
   run(role: string, feeds: Record<string, Tensor>): Promise<Record<string, Tensor>>;
 }
 
-/** A motion window in the world frame: [frames, joints, 3] metres, root-centred horizontally. */
+/** A motion window in the world frame: [frames, joints, 3] metres; the root keeps its horizontal travel. */
 export interface History {
   positions: Float32Array;
   frames: number;
@@ -45,6 +45,20 @@ export interface SampleInfo {
   marks?: number[];
   /** Discrete choices the sampler made (e.g. keypose cluster labels), for display and test vectors. */
   labels?: number[];
+  /** Set when the sample broke a bound (non-finite values, a bone far from its length, a joint far
+   *  from the root) and was cut at its last good frame; separate from Eq. 8's `stopped`. */
+  cut?: { frame: number; reason: 'cut: out of bounds'; detail: string };
+}
+
+/** A history quantity outside the model's training envelope (issue 19): named, with its value and range. */
+export interface RangeWarning {
+  quantity: string;
+  value: number;
+  min: number;
+  max: number;
+  unit?: string;
+  /** One sentence for the stage. */
+  message: string;
 }
 
 /** A per-sample curve for a small plot, e.g. WAT's variance v_i with delta and T_min marked. */
@@ -83,6 +97,8 @@ export interface Prediction {
   readouts?: { label: string; value: number; unit?: string }[];
   /** Distance of each thresholded decision (stop tests, sampled uniforms) to its threshold. */
   margins?: number[];
+  /** History quantities outside the training envelope; the prediction is still made, marked as out of range. */
+  warnings?: RangeWarning[];
 }
 
 export interface Predictor {

@@ -11,7 +11,7 @@ import { Prng } from '../rng/prng';
 import { smoothness } from '../sampling/dct-smoothness';
 import { sampleGaussian } from '../sampling/gaussian';
 import { firstStop, varianceCurve } from '../sampling/variance-stop';
-import { fromCanonical, toCanonical } from './canonical';
+import { fromCanonical, rootRelative, toCanonical, type Placement } from './canonical';
 import { checkHistory, checkRequest } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor,
@@ -70,11 +70,11 @@ export class WatPredictor implements Predictor {
     for (const action of actions) {
       if (isCancelled()) throw new Superseded();
       const canon = new Float32Array(k * histLen);
-      const angles: number[] = [];
+      const placements: Placement[] = [];
       seqs.forEach((s, i) => {
-        const { canonical, angle } = toCanonical(s.slice(s.length - histLen), n, skeleton);
+        const { canonical, placement } = toCanonical(s.slice(s.length - histLen), n, skeleton);
         canon.set(canonical, i * histLen);
-        angles.push(angle);
+        placements.push(placement);
       });
       const onehot = new Float32Array(k * p.actions.length);
       const a = p.actions.indexOf(action);
@@ -88,13 +88,16 @@ export class WatPredictor implements Predictor {
       const futLen = tMax * stride;
       for (let i = 0; i < k; i++) {
         const future = out.future.data.subarray(i * futLen, (i + 1) * futLen);
-        const curve = varianceCurve(future, tMax, stride, q);
+        // Eq. 8 and Eq. 4 act on root-relative poses: a walk that keeps walking is not static.
+        const poses = rootRelative(future, j);
+        const curve = varianceCurve(poses, tMax, stride, q);
         const stop = firstStop(curve, delta, tMin, tMax);
-        const s = smoothness(canon.subarray((i + 1) * histLen - l * stride, (i + 1) * histLen), future.subarray(0, l * stride), l, stride, m);
+        const tail = rootRelative(canon.subarray((i + 1) * histLen - l * stride, (i + 1) * histLen), j);
+        const s = smoothness(tail, poses.subarray(0, l * stride), l, stride, m);
         segments[i].push({ start: totals[i], length: stop.length, action, stopped: stop.stopped, smoothness: s, flagged: s > flag });
         // v at each kept frame; the last Q-1 frames of a sample that never stopped repeat the last value.
         for (let f = 0; f < stop.length; f++) series[i].push(curve[Math.min(f, curve.length - 1)]);
-        const world = fromCanonical(future.slice(0, stop.length * stride), angles[i]);
+        const world = fromCanonical(future.slice(0, stop.length * stride), j, placements[i]);
         parts[i].push(world);
         totals[i] += stop.length;
         seqs[i] = concat(seqs[i], world);

@@ -134,3 +134,25 @@ export function labelDistribution(values: ArrayLike<number>, count: number, cent
   for (let n = 0; n < count; n++) out.set(softmax(prox.subarray(n * clusters, (n + 1) * clusters), temperature), n * clusters);
   return out;
 }
+
+/**
+ * The root channel [frames * 2] (x, z per frame) of a sampled future, twin of export/ops/keypose_travel.py:
+ * frame t (1-based) lies in the segment whose keypose it moves towards and adds that keypose's table
+ * velocity (table [K * 2], metres per frame, facing frame); past the last keypose the root holds.
+ */
+export function travel(labels: number[], durations: number[], table: ArrayLike<number>, frames: number): Float64Array {
+  const steps = new Float64Array(frames * 2);
+  let t = 0;
+  for (let i = 0; i < labels.length && t < frames; i++) {
+    for (let f = t; f < Math.min(t + durations[i], frames); f++) {
+      steps[f * 2] = table[labels[i] * 2];
+      steps[f * 2 + 1] = table[labels[i] * 2 + 1];
+    }
+    t += durations[i];
+  }
+  for (let f = 1; f < frames; f++) {    // a running sum, in order, as numpy's cumsum
+    steps[f * 2] += steps[(f - 1) * 2];
+    steps[f * 2 + 1] += steps[(f - 1) * 2 + 1];
+  }
+  return steps;
+}
