@@ -1,0 +1,252 @@
+"""The ASF/AMC reader: forward kinematics by hand, errors that name the problem, and the CMU data itself
+(the same take read as ASF/AMC and as cgspeed BVH; every take's leg length)."""
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from export.data.asf_amc import (AsfAmcFormatError, joint_positions, parse_amc, parse_asf, read_amc, read_asf,
+                                 read_asf_amc)
+from export.data.bvh import joint_positions as bvh_positions, read_bvh
+
+CMU = Path(__file__).resolve().parents[2] / "data" / "cmu"
+UNIT = 0.0254 / 0.45   # CMU's "length 0.45": one unit is 1/0.45 inch
+
+ASF = """# a hand-made skeleton: a leg (thigh, shin) and an arm
+:version 1.10
+:name tiny
+:units
+  mass 1.0
+  length 0.45
+  angle deg
+:documentation
+   made by hand for the tests
+:root
+   order TX TY TZ RX RY RZ
+   axis XYZ
+   position 0 0 0
+   orientation 0 0 0
+:bonedata
+  begin
+     id 1
+     name thigh
+     direction 0 -1 0
+     length 9
+     axis 0 0 90  XYZ
+    dof rx ry rz
+    limits (-160.0 20.0)
+           (-70.0 70.0)
+           (-60.0 70.0)
+  end
+  begin
+     id 2
+     name shin
+     direction 0 -1 0
+     length 4.5
+     axis 0 0 0  XYZ
+    dof rx
+  end
+  begin
+     id 3
+     name arm
+     direction 1 0 0
+     length 2
+     axis 0 0 0  XYZ
+  end
+:hierarchy
+  begin
+    root thigh arm
+    thigh shin
+  end
+"""
+
+AMC = """#!OML:ASF tiny.asf
+:FULLY-SPECIFIED
+:DEGREES
+1
+root 0 0 0 0 0 0
+thigh 0 0 0
+shin 0
+2
+root 1 2 3 0 90 0
+thigh 0 0 0
+shin 0
+3
+root 0 0 0 0 0 0
+thigh 90 0 0
+shin 90
+4
+root 0 0 0 90 90 0
+thigh 0 0 0
+shin 0
+"""
+
+# By hand, in file units (x UNIT for metres); points are root, thigh end, shin end, arm end.
+EXPECTED = np.array([
+    # frame 1: the rest pose
+    [[0, 0, 0], [0, -9, 0], [0, -13.5, 0], [2, 0, 0]],
+    # frame 2: root at (1, 2, 3), turned 90 degrees about y: the arm (+x) points to -z; the leg (-y) stays
+    [[1, 2, 3], [1, -7, 3], [1, -11.5, 3], [1, 2, 1]],
+    # frame 3: thigh rx 90 is about its local x, which its axis (z 90) turns onto world y, and the thigh
+    # lies along y, so it stays (without C it would swing to -z). The shin's rx 90 (C = I) turns it to
+    # -z, which the thigh's 90 degrees about y turns to -x.
+    [[0, 0, 0], [0, -9, 0], [-4.5, -9, 0], [2, 0, 0]],
+    # frame 4: root RX 90 then RY 90 about the fixed axes (R = Ry Rx): -y -> -z -> -x, +x stays then -> -z.
+    # The other order (Rx Ry) would put the arm at +y.
+    [[0, 0, 0], [-9, 0, 0], [-13.5, 0, 0], [0, 0, -2]],
+], dtype=float)
+
+
+def test_forward_kinematics_by_hand():
+    asf = parse_asf(ASF, "tiny.asf")
+    amc = parse_amc(AMC, asf, "tiny.amc")
+    assert asf.names == ["root", "thigh", "shin", "arm"]
+    assert list(amc.frames) == [1, 2, 3, 4] and amc.degrees
+    np.testing.assert_allclose(joint_positions(asf, amc), EXPECTED * UNIT, atol=1e-12)
+
+
+def test_units_radians_crlf_blank_lines_and_any_bone_order():
+    asf = parse_asf(ASF.replace("length 0.45", "length 1").replace("angle deg", "angle rad")
+                    .replace("axis 0 0 90", f"axis 0 0 {np.pi / 2!r}"), "inch.asf")
+    assert asf.metres == pytest.approx(0.0254)
+    # :RADIANS, CRLF, a blank line, bones in another order per frame (the line-by-line reader)
+    amc = AMC.replace(":DEGREES", ":RADIANS").replace(" 90", f" {np.pi / 2!r}")
+    amc = amc.replace("3\nroot 0 0 0 0 0 0\nthigh", "3\n\nthigh").replace(
+        f"shin {np.pi / 2!r}\n", f"shin {np.pi / 2!r}\nroot 0 0 0 0 0 0\n")
+    got = joint_positions(asf, parse_amc(amc.replace("\n", "\r\n"), asf, "rad.amc"))
+    np.testing.assert_allclose(got, EXPECTED * 0.0254, atol=1e-12)
+
+
+def test_fast_and_line_by_line_readers_agree_on_a_real_take():
+    asf = read_asf(CMU / "data/sxaxmz+CMU-Dataset-Partially-Labelled/Rotations/asf/16.asf")
+    text = (CMU / "data/sxaxmz+CMU-Dataset-Partially-Labelled/Rotations/Testing/16_08  - run.amc").read_text()
+    fast = parse_amc(text, asf, "run.amc")
+    slow = parse_amc(text.replace("\n1\n", "\n\n1\n", 1), asf, "run.amc")  # a blank line: line by line
+    assert len(fast) == 239
+    assert set(fast.values) == set(slow.values)
+    for k in fast.values:
+        np.testing.assert_array_equal(fast.values[k], slow.values[k])
+
+
+def amc_error(edit, asf_text=ASF):
+    with pytest.raises(AsfAmcFormatError) as e:
+        parse_amc(edit(AMC), parse_asf(asf_text, "tiny.asf"), "x.amc")
+    return str(e.value)
+
+
+def asf_error(edit):
+    with pytest.raises(AsfAmcFormatError) as e:
+        parse_asf(edit(ASF), "x.asf")
+    return str(e.value)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: "hello\n" + t, "x.asf: not an ASF file"),
+    (lambda t: t[: t.index(":bonedata")], "x.asf: no :bonedata"),
+    (lambda t: t[: t.index(":hierarchy")], "x.asf: no :hierarchy"),
+    (lambda t: t.replace("     length 4.5\n", ""), "x.asf: line 27: the bone block has no \"length\""),
+    (lambda t: t.replace("direction 0 -1 0\n     length 9", "direction 0 -1\n     length 9"),
+     "x.asf: line 19: direction needs 3 numbers, found \"0 -1\""),
+    (lambda t: t.replace("length 9", "length nine"), "line 20: length needs 1 number, found \"nine\""),
+    (lambda t: t.replace("dof rx\n", "dof tx\n"), "line 33: dof \"tx\" is not supported"),
+    (lambda t: t.replace("axis 0 0 90  XYZ", "axis 0 0 90  XYQ"), "line 21: axis order \"XYQ\""),
+    (lambda t: t.replace("thigh shin\n", "thigh shine\n"), "line 45: hierarchy names \"shine\", which is not a bone"),
+    (lambda t: t.replace("root thigh arm", "root thigh"), "x.asf: bone \"arm\" is not in :hierarchy"),
+    (lambda t: t.replace("name shin", "name thigh"), "line 27: bone name \"thigh\" appears twice"),
+    (lambda t: t[: t.rindex("  end\n:hierarchy")], "bone block opened at line 35 has no \"end\""),
+    (lambda t: t.replace("order TX TY TZ RX RY RZ", "order TX TY TZ RX RY RW"), "line 11: root order"),
+])
+def test_broken_asf_names_the_problem(edit, message):
+    text = asf_error(edit)
+    assert text.startswith("x.asf: ") and message in text, text
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda t: t.replace("shin 90", "shin 90 0"), "x.amc: line 15: bone \"shin\" needs 1 number, found \"90 0\""),
+    (lambda t: t.replace("thigh 90 0 0", "thigh 90 0 1.5.3"), "line 14: bone \"thigh\" needs 3 numbers, found \"90 0 1.5.3\""),
+    (lambda t: t.replace("thigh 90 0 0", "thigh 90 0 nan"), "line 14: bone \"thigh\" needs 3 numbers"),
+    (lambda t: t.replace("root 1 2 3 0 90 0", "root 1 2 3 0 90"), "line 9: the root needs 6 numbers"),
+    (lambda t: t.replace("shin 90", "shine 90"), "line 15: \"shine\" is not a bone with dofs in the ASF"),
+    (lambda t: t.replace("3\nroot", "5\nroot"), "line 12: frame 5 follows frame 2 (frames must count up by one)"),
+    (lambda t: t.replace("thigh 90 0 0\n", ""), "line 15: frame 3 (line 12) has no values for thigh"),
+    (lambda t: t.replace("shin 90\n", "shin 90\nshin 90\n"), "line 16: bone \"shin\" appears twice in frame 3"),
+    (lambda t: t.split("1\nroot")[0], "x.amc: no frames"),
+    (lambda t: t.replace(":DEGREES", ":DEGREEZ"), "line 3: unknown keyword \":DEGREEZ\""),
+    (lambda t: t.replace("1\nroot 0", "root 0", 1), "line 4: \"root 0 0 0 0 0 0\" comes before the first frame number"),
+    (lambda t: t.replace("\n4\n", "\n4.5\n"), "line 16: \"4.5\" is not a bone with dofs in the ASF (frame numbers are whole numbers"),
+])
+def test_broken_amc_names_the_line_and_the_problem(edit, message):
+    text = amc_error(edit)
+    assert text.startswith("x.amc: ") and message in text, text
+
+
+def test_arm_dofs_in_the_amc_of_a_bone_without_dofs_is_an_error():
+    text = amc_error(lambda t: t.replace("shin 0\n2", "shin 0\narm 5\n2"))
+    assert "line 8: \"arm\" is not a bone with dofs in the ASF" in text
+
+
+def test_unreadable_files_are_named(tmp_path):
+    with pytest.raises(AsfAmcFormatError, match="missing.asf: cannot be read"):
+        read_asf(tmp_path / "missing.asf")
+    with pytest.raises(AsfAmcFormatError, match="missing.amc: cannot be read"):
+        read_amc(tmp_path / "missing.amc", parse_asf(ASF))
+
+
+# --- the CMU data -------------------------------------------------------------------------------------
+
+def index():
+    return json.loads((CMU / "index.json").read_text())
+
+
+def mean_of(names, points, spec):
+    return np.mean([points[:, names.index(n)] for n in spec.split("+")], axis=0)
+
+
+def test_asf_amc_and_cgspeed_bvh_of_take_05_02_agree_in_legs_and_root():
+    entry = next(e for e in index() if e["take"] == "05_02")
+    names, p = read_asf_amc(CMU / entry["asf"], CMU / entry["file"])
+    bvh = read_bvh(CMU / "crosscheck/05_02.bvh")
+    q = bvh_positions(bvh)[1:] * UNIT          # frame 0 is cgspeed's T-pose
+    assert p.shape[0] == q.shape[0] == entry["frames"] == 1123
+    # cgspeed leaves out the thorax, so only the legs and the root line up
+    pairs = {"lhipjoint+rhipjoint": "LeftUpLeg+RightUpLeg", "lhipjoint": "LeftUpLeg", "rhipjoint": "RightUpLeg",
+             "lfemur": "LeftLeg", "rfemur": "RightLeg", "ltibia": "LeftFoot", "rtibia": "RightFoot",
+             "lfoot": "LeftToeBase", "rfoot": "RightToeBase", "root": "Hips"}
+    worst = max(np.abs(mean_of(names, p, a) - mean_of(bvh.names, q, b)).max() for a, b in pairs.items())
+    assert worst < 1e-3, worst     # measured: 5e-6 m
+
+
+def leg_length(names, points, hip, knee, ankle):
+    p = {n: points[:, names.index(n)] for n in (hip, knee, ankle)}
+    return np.linalg.norm(p[hip] - p[knee], axis=-1) + np.linalg.norm(p[knee] - p[ankle], axis=-1)
+
+
+def checks_legs():
+    rows = {}
+    for line in (CMU / "CHECKS.txt").read_text().splitlines():
+        m = re.match(r"(\d+_\d+)\s+(amc|bvh-cgs|bvh-daz)\s+\d+\s+\d+\s+[\d.]+\s+([\d.]+)\s", line)
+        if m:
+            rows[m[1]] = float(m[3])
+    return rows
+
+
+def test_every_asf_amc_and_cgspeed_take_has_a_human_leg_length_in_metres():
+    want = checks_legs()
+    measured = {}
+    for e in index():
+        if e["format"].startswith("ASF/AMC"):
+            names, p = read_asf_amc(CMU / e["asf"], CMU / e["file"])
+            legs = [leg_length(names, p, f"{s}hipjoint", f"{s}femur", f"{s}tibia") for s in "lr"]
+        elif e["format"].startswith("BVH (cgspeed"):
+            bvh = read_bvh(CMU / e["file"])
+            names, p = bvh.names, bvh_positions(bvh)[1:] * UNIT
+            legs = [leg_length(names, p, f"{s}UpLeg", f"{s}Leg", f"{s}Foot") for s in ("Left", "Right")]
+        else:
+            continue  # Daz-style: one fixed skeleton for everybody, says nothing about the person
+        measured[e["take"]] = float(np.mean(legs))
+    assert len(measured) == 41 + 14
+    for take, leg in measured.items():
+        assert 0.78 <= leg <= 0.90, (take, leg)
+        assert abs(leg - want[take]) < 1e-3, (take, leg, want[take])
