@@ -20,7 +20,12 @@ def _source(args):
 
 def _data(args) -> None:
     from .data.build import build
-    index = build(_source(args).clips(), Path(args.out)) if args.out else build(_source(args).clips())
+    from .paths import CLIPS_DIR, RUNS_DIR
+    # The site's clips are replaced only by the default data or when asked: a user's folder converts
+    # into runs/data/<folder>/ unless --out names another place.
+    out = Path(args.out) if args.out else (RUNS_DIR / "data" / Path(args.data).name if args.data else CLIPS_DIR)
+    index = build(_source(args), out, replace=args.replace)
+    print(f"clips in {out}")
     roles: dict[str, int] = {}
     for c in index["clips"]:
         roles[c["role"]] = roles.get(c["role"], 0) + 1
@@ -130,14 +135,17 @@ def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python -m export", description="motion-futures: data, training, export")
     sub = p.add_subparsers(dest="command", required=True)
 
-    c = sub.add_parser("data", help="convert motion data into public/clips with the train/test split")
-    c.add_argument("--data", help="a folder of motion files (default: the DeepMimic clips in pybullet)")
-    c.add_argument("--out", help="output folder (default: public/clips)")
+    c = sub.add_parser("data", help="convert motion data into clips with the train/test split")
+    c.add_argument("--data", help="a folder of motion files (default: data/cmu and the DeepMimic clips in pybullet)")
+    c.add_argument("--out", help="output folder (default: public/clips for the default data, "
+                                 "runs/data/<folder> for --data)")
+    c.add_argument("--replace", action="store_true",
+                   help="replace clips in --out that another source wrote (otherwise that is refused)")
     c.set_defaults(run=_data)
 
     c = sub.add_parser("train", help="train one config (also under torchrun --nproc_per_node N)")
     c.add_argument("--config", required=True, help="a file in configs/, e.g. regression.json")
-    c.add_argument("--data", help="a folder of motion files (default: the DeepMimic clips)")
+    c.add_argument("--data", help="a folder of motion files (default: data/cmu and the DeepMimic clips)")
     c.add_argument("--run-dir", help="checkpoints and weights (default: runs/<model id>)")
     c.add_argument("--steps", type=int, help="override the config's training steps")
     c.add_argument("--batch-size", type=int, help="override the config's global batch size")

@@ -14,7 +14,7 @@ def manifest_document(models: list[dict], actions: list[str], data_hash: str) ->
         "format": "motion-futures/manifest",
         "version": 1,
         "fps": FPS,
-        "skeleton": {**SKELETON.to_contract(), "offsets": SKELETON.offsets.round(7).tolist()},
+        "skeleton": {**SKELETON.to_contract(), "offsets": SKELETON.offsets.tolist()},
         "actions": actions,
         "data_hash": data_hash,
         "models": models,

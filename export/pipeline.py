@@ -7,13 +7,15 @@ from pathlib import Path
 import torch
 
 from .config import model_hash
-from .data.build import build as build_clips
+from .data.build import build as build_clips, written_by
 from .data.clip import Clip
-from .data.sources import MotionSource, default_source
+from .data.sources import FPS, MotionSource, default_source
+from .data.windows import windows
 from .manifest import manifest_document, write_manifest
 from .methods import method_for
 from .methods.base import Method
 from .onnx.export import write as write_graph
+from .ops.envelope import envelope
 from .paths import CLIPS_DIR, MODELS_DIR, RUNS_DIR
 from .train.loop import TrainConfig, fit, seed_everything
 
@@ -24,10 +26,17 @@ def train(cfg: dict, clips: list[Clip], run_dir: Path | None = None, resume: boo
     tc = TrainConfig.from_cfg(cfg, **train_overrides)
     seed_everything(tc.seed)  # the initial weights are part of what the seed fixes
     data = method.prepare(clips)
+    method.envelope = training_envelope(clips, method.history_frames)
     model = method.build(data)
     if method.trainable:
         fit(method, model, data, tc, run_dir, resume, progress, stop_at)
     return method, model
+
+
+def training_envelope(clips: list[Clip], history_frames: int) -> dict:
+    """The envelope of the canonical training histories (export/ops/envelope.py), in the manifest."""
+    ws = windows(clips, "train", history_frames + 1, history_frames)
+    return envelope([w.positions[:history_frames] for w in ws], FPS)
 
 
 def export(method: Method, model: torch.nn.Module, cfg: dict, out_dir: Path, actions: list[str],
@@ -52,13 +61,28 @@ def export(method: Method, model: torch.nn.Module, cfg: dict, out_dir: Path, act
     return entry
 
 
+def say_what_is_replaced(source: MotionSource, clips_dir: Path, models_dir: Path) -> None:
+    """Training on other data replaces the site's clips and models: say so before doing it."""
+    index = clips_dir / "index.json"
+    if not index.exists():
+        return
+    old = json.loads(index.read_text())
+    if old.get("written_by", "default") != written_by(source):
+        manifest = models_dir / "manifest.json"
+        models = [m["id"] for m in json.loads(manifest.read_text())["models"]] if manifest.exists() else []
+        print(f"replacing {clips_dir} ({len(old.get('clips', []))} clips from {old.get('written_by', 'the default data')}) "
+              f"and {models_dir} ({', '.join(models) or 'no models'}) with {written_by(source)}", flush=True)
+
+
 def build_models(configs: list[tuple[str, dict]], source: MotionSource | None = None,
                  out_dir: Path = MODELS_DIR, clips_dir: Path = CLIPS_DIR, progress: bool = True,
                  only: list[str] | None = None) -> dict:
     """Convert the data, then train and export every config (or only the ids in `only`, keeping
     the other entries of the existing manifest); write the manifest. Returns it."""
-    clips = (source or default_source()).clips()
-    index = build_clips(clips, clips_dir)
+    source = source or default_source()
+    clips = source.clips()
+    say_what_is_replaced(source, clips_dir, out_dir)
+    index = build_clips(source, clips_dir, clips, replace=True)
     actions = sorted({c.action for c in clips})
     previous = {}
     if only and (out_dir / "manifest.json").exists():

@@ -7,6 +7,8 @@ The TypeScript twin is web/src/motion/retarget.ts; contract/vectors/retarget.jso
    ("Head/end"), or the mean of several ("LeftUpLeg+RightUpLeg"). The first alternative whose
    names all exist in the file wins; `null` means "derive it" (head and toes only, see 5).
 2. Up axis: a z-up source is turned to y-up by (x, y, z) -> (x, z, -y) (a right-handed turn).
+   Leading frames far from the rest of the take (a BVH conversion's T-pose) are dropped by rule
+   (`leading_outliers`).
 3. Frame rate: the source points are resampled to 30 Hz by linear interpolation in time
    (t_k = k / 30). Interpolating points shortens bones between frames slightly, which step 4
    undoes, because only directions survive it.
@@ -44,6 +46,9 @@ MIN_FRAMES = 10
 MAX_FRAMES = 108_000  # one hour at 30 Hz
 JOINT_MAPS_DIR = CONTRACT_DIR / "joint-maps"
 DERIVABLE = ("head", "right_toe", "left_toe")
+LEADING_STEPS = 10.0     # times the median step ...
+LEADING_LEGS = 0.05      # ... and leg lengths: a leading frame this far from the next is not motion
+LEADING_MAX = 3
 LEGS = (("right_hip", "right_knee", "right_ankle"), ("left_hip", "left_knee", "left_ankle"))
 
 
@@ -190,6 +195,64 @@ def resample_points(points: np.ndarray, frame_time: float, out_fps: float = FPS)
     return points[idx] * (1 - w) + points[idx + 1] * w
 
 
+PLAUSIBLE_HEAD = 0.25    # the head stands at least this many leg lengths above the root
+PLAUSIBLE_SYMMETRY = 0.2  # left and right bones differ by at most this fraction
+PLAUSIBLE_LEG = 1.2       # a leg (hip-knee-ankle) is this many times longer than any arm segment
+
+
+def implausible(points: np.ndarray, names: list[str], jmap: JointMap, where: str) -> list[str]:
+    """Why a body read with an *assumed* joint order cannot be a person standing as the order says
+    (empty when it can): the head must stand well above the root (median over frames), left and right
+    bones must match, and the legs must be longer than the arms' segments. A file that names its joints
+    is never second-guessed (a handstand is a real motion); one whose order was assumed is refused."""
+    sources = resolve(jmap, names, where)
+    pts = to_y_up(np.asarray(points, dtype=np.float64), jmap.up)
+    q = {j: pts[:, idx].mean(axis=1) for j, idx in zip(SKELETON.names, sources) if idx is not None}
+    length = lambda a, b: float(np.median(np.linalg.norm(q[a] - q[b], axis=-1)))   # noqa: E731
+    leg = np.mean([length(a, b) + length(b, c) for a, b, c in LEGS])
+    out = []
+    top = "head" if "head" in q else "neck"
+    above = float(np.median(q[top][:, 1] - q["root"][:, 1]))
+    if not above > PLAUSIBLE_HEAD * leg:
+        out.append(f"the {top} is {above:.3g} above the root, less than {PLAUSIBLE_HEAD} leg lengths ({leg:.3g})")
+    for a, b in (("hip", "knee"), ("knee", "ankle"), ("shoulder", "elbow"), ("elbow", "wrist")):
+        r, l = length(f"right_{a}", f"right_{b}"), length(f"left_{a}", f"left_{b}")
+        if abs(r - l) > PLAUSIBLE_SYMMETRY * (r + l) / 2:
+            out.append(f"the right {a}-{b} bone ({r:.3g}) and the left one ({l:.3g}) differ by more than "
+                       f"{PLAUSIBLE_SYMMETRY:.0%}")
+    arm = max(length(f"{s}_{a}", f"{s}_{b}") for s in ("left", "right") for a, b in (("shoulder", "elbow"), ("elbow", "wrist")))
+    if not leg > PLAUSIBLE_LEG * arm:
+        out.append(f"the legs ({leg:.3g}) are not longer than {PLAUSIBLE_LEG} x the longest arm segment ({arm:.3g})")
+    return out
+
+
+def leading_outliers(points: np.ndarray, sources: list[list[int] | None]) -> int:
+    """How many leading source frames are far from the rest of the take (a T-pose that a BVH
+    conversion put first, a capture settling): frame 0 is dropped while its step into the next frame,
+    the mean over the mapped points, is more than LEADING_STEPS times the take's median step and more
+    than LEADING_LEGS leg lengths, at most LEADING_MAX frames. A rule, not a list of files; a real
+    first step is never that far from the ones after it. Twin: leadingOutliers in retarget.ts."""
+    used = sorted({i for idx in sources if idx for i in idx})
+    if len(points) < 3 or not used:
+        return 0
+    p = points[:, used]
+    steps = np.linalg.norm(np.diff(p, axis=0), axis=-1).mean(axis=1)           # [F-1]
+    leg = _source_leg(points, sources)
+    drop = 0
+    while drop < LEADING_MAX and len(steps) - drop > 2:
+        if not (steps[drop] > LEADING_STEPS * np.median(steps[drop:]) and steps[drop] > LEADING_LEGS * leg):
+            break
+        drop += 1
+    return drop
+
+
+def _source_leg(points: np.ndarray, sources: list[list[int] | None]) -> float:
+    """The source's leg length (hip-knee-ankle, both legs, median over frames), in its own units."""
+    q = {j: points[:, idx].mean(axis=1) for j, idx in zip(SKELETON.names, sources) if idx is not None}
+    legs = [np.linalg.norm(q[a] - q[b], axis=-1) + np.linalg.norm(q[b] - q[c], axis=-1) for a, b, c in LEGS]
+    return float(np.median(np.mean(legs, axis=0)))
+
+
 def retarget(points: np.ndarray, names: list[str], frame_time: float, jmap: JointMap, where: str,
              min_frames: int = MIN_FRAMES) -> np.ndarray:
     """Source points [F, N, 3] named `names`, `frame_time` seconds apart -> project positions
@@ -207,7 +270,9 @@ def retarget(points: np.ndarray, names: list[str], frame_time: float, jmap: Join
     if (len(points) - 1) * frame_time * FPS >= MAX_FRAMES:
         raise RetargetError(f"{where}: {len(points)} frames {frame_time:g} s apart last longer than an hour; "
                             "check the frame time or cut the take shorter")
-    pts = resample_points(to_y_up(points, jmap.up), frame_time)
+    raw = to_y_up(points, jmap.up)
+    raw = raw[leading_outliers(raw, sources):]
+    pts = resample_points(raw, frame_time)
     if len(pts) < min_frames:
         raise RetargetError(f"{where}: too few frames: {len(points)} at {1 / frame_time:.4g} Hz is {len(pts)} at 30 Hz, "
                             f"and a history needs at least {min_frames}")

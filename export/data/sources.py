@@ -5,6 +5,7 @@ One small base class and one subclass per source (DeepMimic, BVH folders, npz fo
 """
 from __future__ import annotations
 
+import hashlib
 import json
 import re
 from pathlib import Path
@@ -13,7 +14,7 @@ from . import deepmimic, split
 from .bvh import joint_positions, read_bvh
 from .clip import Clip, Split
 from .npz import load_npz
-from .retarget import JointMap, load_map, retarget
+from .retarget import JointMap, implausible, load_map, retarget
 from ..ops.loop import repeat_cycles
 
 FPS = 30.0
@@ -35,6 +36,18 @@ class MotionSource:
     def _load(self) -> list[tuple[Clip, bool]]:
         raise NotImplementedError
 
+    def split_rules(self) -> list[str]:
+        """The split in words, for the clip index."""
+        return split.RULES
+
+    def notes(self) -> dict[str, str]:
+        """Per action, how its held-out takes differ from its training takes (for the results)."""
+        return {}
+
+    def data_files(self) -> list[Path]:
+        """The source files the clips are read from, for the data hash."""
+        raise NotImplementedError
+
 
 class DeepMimicSource(MotionSource):
     """The humanoid clips inside the pybullet wheel: 15 actions plus the test-only walker takes."""
@@ -43,6 +56,9 @@ class DeepMimicSource(MotionSource):
 
     def __init__(self, root: Path | None = None):
         self.root = Path(root) if root else deepmimic.pybullet_data_dir() / "data" / "motions"
+
+    def data_files(self) -> list[Path]:
+        return sorted(self.root.glob("humanoid3d_*.txt")) + sorted((self.root / "walker").glob("*.txt"))
 
     def _load(self) -> list[tuple[Clip, bool]]:
         items = [(p, p.stem.removeprefix("humanoid3d_"), p.stem.removeprefix("humanoid3d_"), False)
@@ -92,6 +108,10 @@ class FolderSource(MotionSource):
 
     def files(self) -> list[Path]:
         return sorted(p for p in self.root.rglob(f"*{self.suffix}") if p.is_file())
+
+    def data_files(self) -> list[Path]:
+        extra = [self.root / n for n in ("labels.json", "joint-map.json") if (self.root / n).exists()]
+        return self.files() + extra
 
     def _labels(self) -> dict[str, dict]:
         path = self.root / "labels.json"
@@ -168,12 +188,20 @@ class NpzFolderSource(FolderSource):
         motion = load_npz(path)
         jmap = self.joint_map
         names = motion.names or jmap.orders.get(str(motion.points.shape[1]))
+        how = (f"add 'joint_names' to the npz or a sidecar {path.with_suffix('.json').name} with \"names\" "
+               "(the joints in the file's order)")
         if names is None:
             raise ValueError(f"{path}: {motion.points.shape[1]} joints is not a joint order the {jmap.name} map knows "
-                             f"({', '.join(sorted(jmap.orders, key=int))}); add 'joint_names' to the npz or a "
-                             f"sidecar {path.with_suffix('.json').name} with \"names\"")
+                             f"({', '.join(sorted(jmap.orders, key=int))}); {how}")
         if motion.up and motion.up != jmap.up:
             jmap = JointMap(jmap.name, motion.up, jmap.joints, jmap.orders)
+        if motion.names is None:
+            # The order was assumed from the joint count: refuse rather than build a folded body.
+            problems = implausible(motion.points, names, jmap, str(path))
+            if problems:
+                raise ValueError(f"{path}: no joint names, and the assumed {jmap.name} order for "
+                                 f"{motion.points.shape[1]} joints fails a plausibility check: {'; '.join(problems)}. "
+                                 f"Name the joints: {how}")
         return retarget(motion.points, names, 1.0 / motion.fps, jmap, str(path))
 
 
@@ -185,7 +213,9 @@ def clip_name(rel: Path) -> str:
 
 
 def default_source() -> MotionSource:
-    return DeepMimicSource()
+    """The CMU subset (split by person) and the DeepMimic clips (export/data/default.py)."""
+    from .default import DefaultSource   # it builds on this module's classes
+    return DefaultSource()
 
 
 def source_for(path: str | Path, joint_map: Path | None = None) -> MotionSource:
@@ -206,3 +236,12 @@ def source_for(path: str | Path, joint_map: Path | None = None) -> MotionSource:
     if has_npz:
         return NpzFolderSource(path, joint_map)
     raise ValueError(f"{path}: no motion files this version can read (DeepMimic humanoid3d_*.txt, *.bvh, *.npz)")
+
+
+def source_hash(source: MotionSource) -> str:
+    """sha256 over the bytes of the files a source reads (never over converted floats, which differ in
+    their last bits between CPUs): a model trained on other data is stale."""
+    h = hashlib.sha256()
+    for p in source.data_files():
+        h.update(p.name.encode() + b"\0" + p.read_bytes() + b"\0")
+    return "sha256:" + h.hexdigest()

@@ -3,6 +3,7 @@ and the harness loads them exactly like the served models."""
 import json
 
 import numpy as np
+import pytest
 
 from export.config import load_config, override
 from export.eval.harness import load_row_models
@@ -10,6 +11,12 @@ from export.eval.rows import Row
 from export.eval.seeds import train_seeds
 from export.paths import MODELS_DIR
 from export.sample.request import Request
+
+
+@pytest.fixture(scope="module")
+def clips(deepmimic):
+    """Tiny models train on the DeepMimic clips (small, named, with their own test tails)."""
+    return deepmimic
 
 
 def test_an_extra_seed_is_trained_exported_and_loaded_once(clips, tmp_path):

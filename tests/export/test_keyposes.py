@@ -32,6 +32,18 @@ def _history(clip: str, start: int, frames: int) -> np.ndarray:
     return read_clip(CLIPS_DIR / f"{clip}.json").positions[start:start + frames]
 
 
+# Held-out histories from the served clips: the site's default walk and a held-out dance.
+INDEX = json.loads((CLIPS_DIR / "index.json").read_text())
+WALK = INDEX["default"]["clip"]
+DANCE = next(c["name"] for c in INDEX["clips"] if c["role"] == "test" and c["action"] == "dance_ballet_modern")
+
+
+@pytest.fixture(scope="module")
+def clips(deepmimic):
+    """Tiny models train on the DeepMimic clips (small, named)."""
+    return deepmimic
+
+
 def test_training_windows_come_from_train_ranges_only(clips):
     method = method_for(CFG)
     ws = method._windows(list(clips.values()))
@@ -58,7 +70,7 @@ def test_tiny_model_trains_exports_and_predicts(clips, tmp_path):
     manifest = manifest_document([entry], ["walk"], "sha256:" + "0" * 64)
     write_manifest(manifest, tmp_path / "manifest.json")
     pred = KeyposesPredictor(entry, manifest, tmp_path).predict(
-        _history("walker_walk_forward", 0, 30), Request(k=3, seed=1, horizon_frames=40))
+        _history(WALK, 0, 30), Request(k=3, seed=1, horizon_frames=40))
     assert pred.futures.shape == (3, 40, 18, 3) and np.all(np.isfinite(pred.futures))
 
 
@@ -76,7 +88,7 @@ def test_committed_centres_and_temperature_meet_their_targets(clips):
 @committed
 def test_k_futures_differ_join_the_history_and_mark_their_keyposes():
     n = ENTRY["params"]["history_frames"]
-    history = _history("walker_turn_right0", 2, n)
+    history = _history(DANCE, 2, n)
     pred = load_predictor(ENTRY["id"]).predict(history, Request(k=10, seed=3))
     assert pred.futures.shape == (10, 150, 18, 3) and pred.lengths.tolist() == [150] * 10
     assert len({tuple(s["labels"]) for s in pred.samples}) > 1
@@ -93,7 +105,7 @@ def test_k_futures_differ_join_the_history_and_mark_their_keyposes():
 @committed
 def test_refinement_keeps_the_start_and_changes_the_motion():
     n = ENTRY["params"]["history_frames"]
-    history = _history("walker_walk_forward", 0, n)
+    history = _history(WALK, 0, n)
     p = load_predictor(ENTRY["id"])
     raw = p.predict(history, Request(k=4, seed=5, controls={"refine": False}))
     ref = p.predict(history, Request(k=4, seed=5, controls={"refine": True}))
@@ -112,12 +124,12 @@ def test_refinement_keeps_the_start_and_changes_the_motion():
 ])
 def test_bad_controls_get_clear_messages(controls, message):
     with pytest.raises(PredictError, match=message):
-        load_predictor(ENTRY["id"]).predict(_history("walker_walk_forward", 0, 30), Request(k=2, controls=controls))
+        load_predictor(ENTRY["id"]).predict(_history(WALK, 0, 30), Request(k=2, controls=controls))
 
 
 @committed
 def test_a_history_with_too_few_keyposes_is_rejected():
-    still = np.repeat(_history("walker_walk_forward", 0, 1), ENTRY["params"]["history_frames"], axis=0)
+    still = np.repeat(_history(WALK, 0, 1), ENTRY["params"]["history_frames"], axis=0)
     with pytest.raises(PredictError, match="the history yields 2 keyposes at the 0.3 m threshold; "
                                            "Keyposes needs at least 3"):
         load_predictor(ENTRY["id"]).predict(still, Request(k=2))
@@ -130,4 +142,4 @@ def test_a_missing_centres_file_is_named(tmp_path):
         shutil.copy(MODELS_DIR / g["file"], tmp_path / g["file"])
     p = load_predictor(ENTRY["id"], tmp_path)
     with pytest.raises(FileNotFoundError, match="keyposes.centres.json: keypose centres file missing"):
-        p.predict(_history("walker_walk_forward", 0, 30), Request(k=2))
+        p.predict(_history(WALK, 0, 30), Request(k=2))

@@ -1,6 +1,8 @@
 """Keypose extraction, labels, pruning, duration classes, proximity softmax, interpolation and
 temperature draws (export/ops/keyposes.py, proximity.py, keypose_interpolation.py)."""
 import numpy as np
+
+from export.ops.facing import root_relative, split_root
 import pytest
 
 from export.data.skeleton import SKELETON
@@ -58,10 +60,11 @@ def test_observed_keyposes_use_only_frames_up_to_the_present():
     assert kp.extract(changed[:30], 0.3) == history and history[-1] == 29
 
 
-def test_extraction_on_the_clips_matches_the_recorded_numbers(clips):
-    counts = [len(kp.extract(c.positions, kp.THRESHOLD)) for c in clips.values() if not c.name.startswith("walker_")]
-    gaps = np.concatenate([np.diff(kp.extract(c.positions, kp.THRESHOLD))
-                           for c in clips.values() if not c.name.startswith("walker_")])
+def test_extraction_on_the_deepmimic_clips_matches_the_recorded_numbers(deepmimic):
+    # keyposes act on root-relative poses (ops/facing.py); the numbers are those of ops/keyposes.py's comment
+    poses = [root_relative(split_root(c.positions)) for c in deepmimic.values() if not c.name.startswith("walker_")]
+    counts = [len(kp.extract(p, kp.THRESHOLD)) for p in poses]
+    gaps = np.concatenate([np.diff(kp.extract(p, kp.THRESHOLD)) for p in poses])
     assert len(counts) == 15 and sum(counts) == 171 and min(counts) == 4 and max(counts) == 25
     assert 6.0 < gaps.mean() < 6.6
 

@@ -42,7 +42,8 @@ def test_committed_model_is_not_stale(entry):
 
 
 def test_python_predictor_follows_the_contract():
-    clip = read_clip(CLIPS_DIR / "walker_walk_forward.json")
+    index = load_json(CLIPS_DIR / "index.json", "clip-index")
+    clip = read_clip(CLIPS_DIR / f"{index['default']['clip']}.json")      # a held-out walk
     p = load_predictor("regression-gru")
     pred = p.predict(clip.positions[:10], Request(k=1, seed=3, horizon_frames=50))
     assert pred.futures.shape == (1, 50, 18, 3) and pred.lengths.tolist() == [50]

@@ -1,8 +1,16 @@
+"""The DeepMimic source's own split (a user's DeepMimic folder keeps it): walker takes test-only, test tails."""
 import numpy as np
+import pytest
 
 from export.contract import load_json
+from export.data.build import served
 from export.data.windows import windows
 from export.paths import CLIPS_DIR
+
+
+@pytest.fixture(scope="module")
+def clips(deepmimic):
+    return deepmimic
 
 
 def test_roles(clips):
@@ -42,10 +50,11 @@ def test_windows_face_plus_z_at_the_last_history_frame(clips):
         assert abs(facing_angle(w.positions[9], SKELETON)) < 1e-9
 
 
-def test_split_file_lists_every_clip_and_its_role(clips):
+def test_split_file_lists_every_served_clip_and_its_role(default_clips):
     index = load_json(CLIPS_DIR / "index.json", "clip-index")
     listed = {c["name"]: c for c in index["clips"]}
-    assert set(listed) == set(clips)
-    for name, c in clips.items():
-        assert listed[name]["role"] == c.split.role
+    shown = {c.name: c for c in served(list(default_clips.values()))}
+    assert set(listed) == set(shown)
+    for name, c in shown.items():
+        assert listed[name]["role"] == c.split.role and listed[name].get("subject") == c.subject
         assert [tuple(r) for r in listed[name]["test"]] == c.split.test

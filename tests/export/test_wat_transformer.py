@@ -17,6 +17,12 @@ from export.pipeline import export, train
 from export.sample.predictor import load_predictor
 from export.sample.request import Request
 
+
+@pytest.fixture(scope="module")
+def clips(deepmimic):
+    """Tiny models train on the DeepMimic clips (small, named, with their own test tails)."""
+    return deepmimic
+
 SUBSET = ["walk", "run", "punch", "kick", "spin", "walker_walk_forward"]
 TINY = {"train.steps": 8, "train.batch_size": 16, "future_frames": 16, "model.latent": 4, "model.d_model": 16,
         "model.heads": 2, "model.feedforward": 24, "model.prior_layers": 1, "model.posterior_layers": 1,
@@ -73,9 +79,10 @@ def test_decoder_reads_z_and_the_action_and_holds_x_n_when_untrained():
     m = _model().eval()
     hist, action, z = torch.randn(3, 10, 18, 3) * 0.3, torch.eye(5)[:3], torch.randn(3, 4)
     with torch.no_grad():
-        # Zero-initialised output layer: the untrained decoder predicts the held last pose.
-        out = m.decode_from(z, hist, action)
-        assert out.shape == (3, 12, 18, 3)
+        # Zero-initialised output layer: the untrained decoder predicts the held last pose (before the
+        # finishing layers, models/finish.py, continue the history's step and set bone lengths).
+        out = m.decode(None, m.action_embed(action), z, hist)
+        assert out.shape == (3, 12, 18, 3) and m.decode_from(z, hist, action).shape == (3, 12, 18, 3)
         torch.testing.assert_close(out, hist[:, -1:].expand(-1, 12, -1, -1))
         torch.nn.init.normal_(m.dec_out.weight, std=0.1)
         base = m.decode_from(z, hist, action)
@@ -112,7 +119,7 @@ def test_training_step_reaches_every_part(clips):
     torch.nn.init.normal_(model.dec_out.weight, std=0.1)
     batch = {k: v[:16] for k, v in data.tensors.items()}
     loss, logs = method.loss(model, batch, 0)
-    assert set(logs) == {"rec", "smooth", "kl"} and all(np.isfinite(list(logs.values())))
+    assert set(logs) == {"rec", "smooth", "kl", "floor"} and all(np.isfinite(list(logs.values())))
     loss.backward()
     for part in (model.prior.tokens, model.posterior.embed, model.dec_blocks[0].cond_kv, model.z_embed, model.dec_out):
         assert part.weight.grad.abs().sum() > 0
