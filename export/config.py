@@ -27,6 +27,16 @@ def load_config(path: str | Path) -> dict:
         raise FileNotFoundError(f"{path}: config not found") from e
     except json.JSONDecodeError as e:
         raise ValueError(f"{path}: not valid JSON ({e})") from e
+    if "extends" in cfg:
+        # An ablation names the config it changes and only what it changes, so it follows the served
+        # config (its data, budget and sizes) instead of drifting from a copy.
+        unknown = set(cfg) - {"extends", "id", "label", "description", "changes"}
+        if unknown:
+            raise ValueError(f"{path}: a config that extends another has only id, label, description and "
+                             f"changes, not {sorted(unknown)}")
+        base = load_config(CONFIGS_DIR / cfg["extends"])
+        own = {k: cfg[k] for k in ("id", "label", "description") if k in cfg}
+        cfg = {**override(base, **cfg.get("changes", {})), **own}
     for key in ("id", "method", "history_frames", "future_frames"):
         if key not in cfg:
             raise ValueError(f"{path}: config is missing '{key}'")

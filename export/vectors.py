@@ -17,6 +17,9 @@ from .rng import Prng
 from .tolerance import about, float32_floor, float_gap, rounding_gap
 from .vectors_keyposes import keyposes_e2e_cases, keyposes_record, keyposes_vector
 from .vectors_lcp import lcp_e2e_cases, lcp_record, lcp_vector
+from .vectors_asf import asf_vector
+from .vectors_guard import bones_vector, envelope_vector, guard_vector
+from .vectors_metrics import metrics_vector
 from .vectors_record import record
 from .vectors_retarget import retarget_vector
 from .vectors_wat import dct_smoothness_vector, variance_stop_vector, wat_e2e_cases, wat_record
@@ -137,6 +140,11 @@ FAMILIES: dict[str, Callable[[], dict]] = {
     "lcp": _op_family(lcp_vector),
     "keyposes": _op_family(keyposes_vector),
     "retarget": _op_family(retarget_vector),
+    "asf": _op_family(asf_vector),
+    "metrics": _op_family(metrics_vector),
+    "bones": _op_family(bones_vector),
+    "envelope": _op_family(envelope_vector),
+    "guard": _op_family(guard_vector),
     "e2e": e2e_vector,
 }
 

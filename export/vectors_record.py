@@ -14,4 +14,6 @@ def float32_list(values: np.ndarray) -> list:
 def record(entry: dict, clip: str, start: int, history: np.ndarray, req, pred, **extra) -> dict:
     return {"model": entry["id"], "model_hash": entry["hash"], "clip": clip, "start": start,
             "history": float32_list(history), "request": req.to_json(), "lengths": pred.lengths.tolist(),
+            "warnings": [w["quantity"] for w in pred.warnings],
+            "cuts": [s["cut"]["frame"] if "cut" in s else None for s in pred.samples],
             **extra, "futures": float32_list(pred.futures)}

@@ -50,6 +50,7 @@ class Method:
         self.cfg = cfg
         self.history_frames = int(cfg["history_frames"])
         self.future_frames = int(cfg["future_frames"])
+        self.envelope: dict | None = None      # the training histories' envelope (pipeline.train)
 
     def prepare(self, clips: list[Clip]) -> TrainingData:
         raise NotImplementedError
@@ -64,7 +65,10 @@ class Method:
         raise NotImplementedError
 
     def params(self, model: nn.Module) -> dict:
-        return {"history_frames": self.history_frames, "future_frames": self.future_frames}
+        out = {"history_frames": self.history_frames, "future_frames": self.future_frames}
+        if self.envelope is not None:
+            out["envelope"] = self.envelope
+        return out
 
     def controls(self, actions: list[str]) -> list[dict]:
         return []

@@ -10,6 +10,7 @@ from ..data.skeleton import SKELETON
 from ..data.windows import windows
 from ..models.regression_gru import RegressionGRU
 from ..models.zero_velocity import ZeroVelocity
+from ..ops.floor import floor_penalty
 from .base import GraphDef, Method, TensorSpec, TrainingData
 
 J = SKELETON.num_joints
@@ -66,9 +67,12 @@ class RegressionMethod(_DirectMethod):
         m = self.cfg.get("model", {})
         s = data.stats
         return RegressionGRU(J, self.future_frames, int(m.get("hidden", 64)), int(m.get("dct_bases", 10)),
-                             s["pose_mean"], s["pose_std"], s["offset_std"], bool(m.get("keep_bones", True)))
+                             s["pose_mean"], s["pose_std"], s["offset_std"], bool(m.get("keep_bones", True)),
+                             bool(m.get("seam", True)))
 
     def loss(self, model, batch, step):
         pred = model(batch["history"])
         err = torch.linalg.vector_norm(pred - batch["future"], dim=-1).mean()  # mean per-joint error, metres
-        return err, {"mpjpe": float(err.detach())}
+        floor = floor_penalty(pred)                                            # feet may not sink (ops/floor.py)
+        w = float(self.cfg.get("loss", {}).get("floor", 100.0))
+        return err + w * floor, {"mpjpe": float(err.detach()), "floor": float(floor.detach())}

@@ -22,6 +22,7 @@ from ..models.kp_refine import RefineGCN
 from ..ops import keyposes as kp
 from ..ops.keypose_interpolation import interpolate
 from ..ops.facing import root_relative, split_root
+from ..ops.floor import floor_penalty
 from ..ops.keypose_travel import facing_velocities, velocity_table
 from ..ops.mirror import mirror_positions
 from ..ops.proximity import NOISE_PER_TEMPERATURE, choose_temperature, face_forward, proximity, softmax
@@ -307,8 +308,9 @@ class KeyposesMethod(Method):
         # Eq. 4's weights (paper: 0.1, 100, 1e-6) leave bone length out; measured here, bone = 1
         # lets the GCN memorise training motions (train MPJPE 0.20 -> 0.10 m) while bone errors grow
         # (1.4 -> 1.8 cm); bone = 100 halves them on train and quarters them on test windows.
+        floor = floor_penalty(refined)        # feet may not sink (ops/floor.py): issue 17's shape terms
         refine = (float(w.get("pose", 1.0)) * e_pose + float(w.get("velocity", 10.0)) * e_vel
-                  + float(w.get("bone", 100.0)) * e_bone)
+                  + float(w.get("bone", 100.0)) * e_bone + float(w.get("floor", 100.0)) * floor)
         total = float(w.get("labels", 1.0)) * ce_l + float(w.get("duration", 0.1)) * ce_d + refine
         logs = {"ce_label": ce_l, "ce_dur": ce_d, "acc_label": acc_l, "acc_dur": acc_d, "pose": e_pose, "bone": e_bone}
         return total, {k: float(v.detach()) for k, v in logs.items()}
@@ -340,7 +342,10 @@ class KeyposesMethod(Method):
                              "predicted": self.predicted, "layers": g.layers, "hidden": g.hidden},
                 "label_temperature": g.temperature, "label_noise": g.noise,
                 "duration_classes": {"bounds": list(kp.DURATION_BOUNDS), "lengths": list(kp.DURATION_LENGTHS)},
-                "refine_frames": self.refine_frames}
+                "refine_frames": self.refine_frames,
+                # the predictors' seam with the history and fixed bone lengths (issue 17's shape terms);
+                # false only in the ablation that measures what they cost
+                "finish": bool(self.cfg.get("finish", True))}
 
     def controls(self, actions: list[str]) -> list[dict]:
         return [

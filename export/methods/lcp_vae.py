@@ -14,6 +14,7 @@ from ..data.skeleton import SKELETON
 from ..data.sources import FPS
 from ..data.windows import windows
 from ..models.lcp_vae import VARIANTS, ConditionGraph, DecoderGraph, LcpVae
+from ..ops.floor import floor_penalty
 from ..ops.kl import kl_lcp, kl_standard_normal
 from ..ops.kl_annealing import kl_weight
 from .base import GraphDef, Method, TensorSpec, TrainingData
@@ -62,7 +63,7 @@ class LcpVaeMethod(Method):
             self.rec_weight = data.stats["pose_std"].square()
         return LcpVae(self.variant, J, self.history_frames, self.future_frames, int(m.get("hidden", 64)),
                       int(m.get("embed", 64)), int(m.get("latent", 16)), data.stats["pose_mean"],
-                      data.stats["pose_std"], bool(m.get("keep_bones", True)))
+                      data.stats["pose_std"], bool(m.get("keep_bones", True)), bool(m.get("seam", True)))
 
     def schedule(self, step: int) -> tuple[float, float]:
         """(teacher-forcing probability, KL weight lambda) at a training step."""
@@ -74,7 +75,10 @@ class LcpVaeMethod(Method):
         out = model(batch["history"], batch["future"], teacher_forcing)
         terms = components(self.variant, out, self.rec_weight)
         kl = terms["kl_c"] + terms["kl"]
-        total = lam * kl + terms["rec_history"] + terms["rec_future"]      # Eq. 9
+        # feet may not sink (ops/floor.py), on the future in metres; a term beside Eq. 9
+        terms["floor"] = floor_penalty(model.denormalise(out["future_hat"]))
+        w_floor = float(self.cfg.get("loss", {}).get("floor", 1000.0))
+        total = lam * kl + terms["rec_history"] + terms["rec_future"] + w_floor * terms["floor"]   # Eq. 9 + floor
         logs = {k: float(v.detach()) for k, v in terms.items()}
         logs.update(lam=lam, tf=teacher_forcing)
         return total, logs
@@ -87,8 +91,9 @@ class LcpVaeMethod(Method):
         cond = ConditionGraph(model)
         cond_outputs = [TensorSpec(name, ["batch", model.hidden if name == "h_t" else d]) for name in cond.outputs]
         z = torch.randn(2, d, generator=gen)
-        last_pose = mean_pose.expand(2, J, 3) + 0.05 * torch.randn(2, J, 3, generator=gen)
-        inputs, examples = [TensorSpec("z", ["batch", d]), TensorSpec("last_pose", ["batch", J, 3])], (z, last_pose)
+        last_poses = mean_pose.expand(2, 2, J, 3) + 0.05 * torch.randn(2, 2, J, 3, generator=gen)
+        inputs = [TensorSpec("z", ["batch", d]), TensorSpec("last_poses", ["batch", 2, J, 3])]
+        examples = (z, last_poses)
         if model.decoder_condition:
             c = torch.randn(2, model.decoder_condition_size, generator=gen)
             inputs.append(TensorSpec("c", ["batch", model.decoder_condition_size]))

@@ -18,6 +18,7 @@ from ..data.windows import windows
 from ..models.wat import DecoderGraph, PriorGraph, RolloutDecoderGraph, WatRNN, kl_divergence
 from ..ops.dct_smoothness import smoothness, smoothness_loss
 from ..ops.facing import root_relative
+from ..ops.floor import floor_penalty
 from ..ops.transitions import build_bank, cached_repeats, transition_rate
 from ..ops.variance_stop import variance_curve
 from .base import GraphDef, Method, TensorSpec, TrainingData
@@ -62,7 +63,8 @@ class WatMethod(Method):
         # flags 81% of the hard cuts between training pairs; the 99th (0.115) would flag only 62%.
         self.smooth = {"l": 10, "m": 5, "flag_percentile": 95, **cfg.get("smoothness", {})}
         # root: the root channel's path error counts like the pose error of the joints (square metres).
-        self.weights = {"rec": 100.0, "smooth": 100.0, "kl": 1.0, "root": 1.0, **cfg.get("loss", {})}
+        # floor: feet below y = 0 (ops/floor.py), a term beside Eq. 6 (issue 17's shape terms).
+        self.weights = {"rec": 100.0, "smooth": 100.0, "kl": 1.0, "root": 1.0, "floor": 1000.0, **cfg.get("loss", {})}
         self.bank = self.pairs = None
         self.calibration: dict | None = None
 
@@ -75,7 +77,8 @@ class WatMethod(Method):
         seed = int(self.cfg.get("train", {}).get("seed", 0))
         b = build_bank(clips, self.actions, n, t_max, self.k, int(self.tr["t0_cap"]), int(self.tr["start_search"]),
                        int(self.tr["same_copies"]), bool(self.tr["weak"]), bool(self.tr["mirror"]),
-                       min_future=int(self.stop["min_frames"]), seed=seed)
+                       min_future=int(self.stop["min_frames"]), seed=seed,
+                       cross_per_history=self.tr.get("cross_per_history"))
         self.bank = {
             "history": torch.from_numpy(b.histories),
             "instance": torch.from_numpy(b.instances),
@@ -141,9 +144,11 @@ class WatMethod(Method):
         smooth = smoothness_loss(root_relative(history[:, -l:]), root_relative(pred[:, :l]),
                                  self.smooth["m"]).mean()                                   # Eq. 4
         kl = kl_divergence(mu, logvar, prior_mu, prior_logvar).mean()                      # Eq. 2
+        floor = floor_penalty(pred)                               # feet may not sink (ops/floor.py)
         w = self.weights
-        total = w["rec"] * rec + w["smooth"] * smooth + w["kl"] * kl                        # Eq. 6
-        return total, {"rec": float(rec.detach()), "smooth": float(smooth.detach()), "kl": float(kl.detach())}
+        total = w["rec"] * rec + w["smooth"] * smooth + w["kl"] * kl + w["floor"] * floor   # Eq. 6 + floor
+        return total, {"rec": float(rec.detach()), "smooth": float(smooth.detach()), "kl": float(kl.detach()),
+                       "floor": float(floor.detach())}
 
     # --- export -------------------------------------------------------------------------------
     def _examples(self) -> tuple[torch.Tensor, torch.Tensor]:

@@ -54,14 +54,17 @@ class RolloutGraph(nn.Module):
     """An exported graph made of `setup` (exported by torch) and `rollout()` (written as ONNX)."""
 
     def setup(self, *inputs: torch.Tensor) -> tuple[torch.Tensor, ...]:
-        """The graph's inputs -> (seed x_0 [B, K], h_0 [B, H]) or (seed, h_0, context [B, C])."""
+        """The graph's inputs -> (seed x_0 [B, K], h_0 [B, H][, context [B, C]][, anchor]): the anchor
+        (what `finish` needs besides the frames, e.g. the history's last two frames) only when
+        `finish()` gives a module."""
         raise NotImplementedError
 
     def rollout(self) -> GruRollout:
         raise NotImplementedError
 
     def finish(self) -> nn.Module | None:
-        """A module applied to the rollout's frames [B, steps, *frame_shape] (e.g. KeepBones), or None."""
+        """A module (frames [B, steps, *frame_shape], anchor) -> the graph's output (models/finish.py),
+        or None."""
         return None
 
 

@@ -33,7 +33,8 @@ class RefineGCN(nn.Module):
                  keep_bones: bool = True):
         """`frames` includes the present pose at index 0; the output is the frames after it."""
         super().__init__()
-        # The last layer (models/keep_bones.py): refined bones keep the skeleton's lengths.
+        # The last layer (models/keep_bones.py): refined bones keep the skeleton's lengths. (The seam with
+        # the history is the predictor's, ops/seam.py: the interpolation it refines is made there too.)
         self.keep_bones = KeepBones() if keep_bones else None
         nodes = 3 * joints
         self.register_buffer("dct", torch.from_numpy(dct_basis(frames, bases)).float())   # [frames, bases]

@@ -15,7 +15,7 @@ from torch import nn
 from torch.nn import functional as F
 
 from .gru_rollout import GruRollout, RolloutGraph
-from .keep_bones import KeepBones
+from .finish import Finish
 
 VARIANTS = {"lcp": 4, "cvae_h": 2, "cvae_zc": 3}   # variant -> row of Table 4
 # sigma > 0 strictly: the KLs of Eqs. 5-6 take log sigma.
@@ -98,10 +98,10 @@ class PoseDecoder(nn.Module):
 class LcpVae(nn.Module):
     def __init__(self, variant: str, joints: int, history_frames: int, future_frames: int,
                  hidden: int, embed: int, latent: int, pose_mean: torch.Tensor, pose_std: torch.Tensor,
-                 keep_bones: bool = True):
+                 keep_bones: bool = True, seam: bool = True):
         super().__init__()
-        # The data decoder's last layer (models/keep_bones.py): bones keep the skeleton's lengths.
-        self.keep_bones = KeepBones() if keep_bones else None
+        # The data decoder's last layers (models/finish.py): the seam with the history, bones of fixed length.
+        self.finish_layer = Finish(future_frames, seam, keep_bones) if (seam or keep_bones) else None
         if variant not in VARIANTS:
             raise ValueError(f"unknown LCP-VAE variant {variant!r}; known: {sorted(VARIANTS)}")
         self.variant, self.joints = variant, joints
@@ -141,9 +141,9 @@ class LcpVae(nn.Module):
     def denormalise(self, x: torch.Tensor) -> torch.Tensor:
         return (x * self.pose_std + self.pose_mean).reshape(*x.shape[:-1], self.joints, 3)
 
-    def finish(self, future: torch.Tensor) -> torch.Tensor:
-        """Decoded future [B, T, J, 3] metres -> the same with the skeleton's bone lengths."""
-        return future if self.keep_bones is None else self.keep_bones(future)
+    def finish(self, future: torch.Tensor, last_poses: torch.Tensor) -> torch.Tensor:
+        """Decoded future [B, T, J, 3] metres and the history's last two poses -> the finished future."""
+        return future if self.finish_layer is None else self.finish_layer(future, last_poses)
 
     def condition(self, history: torch.Tensor) -> dict[str, torch.Tensor]:
         """history [B, N, J, 3] metres -> h_t, and mu_c, sigma_c when there is a CS-VAE."""
@@ -152,16 +152,18 @@ class LcpVae(nn.Module):
             out["mu_c"], out["sigma_c"] = self.cs_encode(out["h_t"])
         return out
 
-    def decode(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None,
+    def decode(self, z: torch.Tensor, last_poses: torch.Tensor, c: torch.Tensor | None = None,
                target: torch.Tensor | None = None, teacher_forcing: float = 0.0) -> torch.Tensor:
         """z [B, d], last observed pose [B, J, 3] metres (, c) -> normalised future [B, T, P]."""
         code = z if c is None else torch.cat([z, c], -1)
-        seed = (last_pose.flatten(1) - self.pose_mean) / self.pose_std
+        seed = (last_poses[:, -1].flatten(1) - self.pose_mean) / self.pose_std
         return self.decode_data(self.lcp_decode(code), seed, self.future_frames, target, teacher_forcing)
 
-    def rollout_setup(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
-        """The data decoder's start for the exported rollout: (last pose [B, P] metres, its state)."""
-        return last_pose.flatten(1), self.lcp_decode(z if c is None else torch.cat([z, c], -1))
+    def rollout_setup(self, z: torch.Tensor, last_poses: torch.Tensor, c: torch.Tensor | None = None):
+        """The data decoder's start for the exported rollout: (last pose [B, P] metres, its state[, the
+        last two poses for the finishing layers])."""
+        start = (last_poses[:, -1].flatten(1), self.lcp_decode(z if c is None else torch.cat([z, c], -1)))
+        return start if self.finish_layer is None else start + (last_poses,)
 
     def rollout(self) -> GruRollout:
         """DecodeData's step with the normalisation folded into the weights (raw metres)."""
@@ -194,8 +196,8 @@ class LcpVae(nn.Module):
         else:
             out["mu"], out["sigma"] = self.lcp_encode(torch.cat([h_T, z_c], -1))
             z, c = out["mu"] + out["sigma"] * torch.randn_like(out["mu"]), z_c
-        decoded = self.decode(z, history[:, -1], c, x_fut, teacher_forcing)
-        out["future_hat"] = self.normalise(self.finish(self.denormalise(decoded)))
+        decoded = self.decode(z, history[:, -2:], c, x_fut, teacher_forcing)
+        out["future_hat"] = self.normalise(self.finish(self.denormalise(decoded), history[:, -2:]))
         out["future_norm"] = x_fut
         return out
 
@@ -224,14 +226,14 @@ class DecoderGraph(RolloutGraph):
         super().__init__()
         self.model = model
 
-    def forward(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
-        return self.model.finish(self.model.denormalise(self.model.decode(z, last_pose, c)))
+    def forward(self, z: torch.Tensor, last_poses: torch.Tensor, c: torch.Tensor | None = None):
+        return self.model.finish(self.model.denormalise(self.model.decode(z, last_poses, c)), last_poses)
 
-    def setup(self, z: torch.Tensor, last_pose: torch.Tensor, c: torch.Tensor | None = None):
-        return self.model.rollout_setup(z, last_pose, c)
+    def setup(self, z: torch.Tensor, last_poses: torch.Tensor, c: torch.Tensor | None = None):
+        return self.model.rollout_setup(z, last_poses, c)
 
     def rollout(self) -> GruRollout:
         return self.model.rollout()
 
     def finish(self) -> nn.Module | None:
-        return self.model.keep_bones
+        return self.model.finish_layer

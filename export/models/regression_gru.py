@@ -10,15 +10,16 @@ import torch
 from torch import nn
 
 from ..ops.dct import dct_basis
-from .keep_bones import KeepBones
+from .finish import Finish
 
 
 class RegressionGRU(nn.Module):
     def __init__(self, joints: int, future_frames: int, hidden: int, dct_bases: int,
-                 pose_mean: torch.Tensor, pose_std: torch.Tensor, offset_std: torch.Tensor, keep_bones: bool = True):
+                 pose_mean: torch.Tensor, pose_std: torch.Tensor, offset_std: torch.Tensor, keep_bones: bool = True,
+                 seam: bool = True):
         super().__init__()
-        # The last layer (models/keep_bones.py): bones keep the skeleton's lengths.
-        self.keep_bones = KeepBones() if keep_bones else None
+        # The last layers (models/finish.py): the seam with the history, bones of fixed length.
+        self.finish = Finish(future_frames, seam, keep_bones) if (seam or keep_bones) else None
         self.joints, self.future_frames, self.dct_bases = joints, future_frames, dct_bases
         # Normalisation lives inside the graph: the browser passes raw metres.
         self.register_buffer("pose_mean", pose_mean.reshape(1, 1, joints * 3).float())
@@ -36,4 +37,4 @@ class RegressionGRU(nn.Module):
         coeffs = self.head(h[-1]).reshape(b, self.dct_bases, -1)
         offsets = torch.matmul(self.basis, coeffs) * self.offset_std
         future = (x[:, -1:] + offsets).reshape(b, self.future_frames, self.joints, 3)
-        return future if self.keep_bones is None else self.keep_bones(future)
+        return future if self.finish is None else self.finish(future, history[:, -2:])

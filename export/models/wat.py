@@ -14,7 +14,7 @@ import torch
 from torch import nn
 
 from .gru_rollout import GruRollout, RolloutGraph
-from .keep_bones import KeepBones
+from .finish import Finish
 
 # Log-variances are clamped so exp(logvar / 2) stays finite in float32 in both runtimes.
 LOGVAR_MIN, LOGVAR_MAX = -12.0, 6.0
@@ -37,11 +37,12 @@ def kl_divergence(mu: torch.Tensor, logvar: torch.Tensor, prior_mu: torch.Tensor
 class WatCVAE(nn.Module):
     def __init__(self, joints: int, actions: int, max_frames: int, latent: int, action_embed: int,
                  history_features: int, future_features: int, mlp_hidden: int,
-                 pose_mean: torch.Tensor, pose_std: torch.Tensor, offset_std: torch.Tensor, keep_bones: bool = True):
+                 pose_mean: torch.Tensor, pose_std: torch.Tensor, offset_std: torch.Tensor, keep_bones: bool = True,
+                 seam: bool = True):
         super().__init__()
         self.joints, self.actions, self.max_frames, self.latent = joints, actions, max_frames, latent
-        # The decoder's last layer (models/keep_bones.py): bones keep the skeleton's lengths.
-        self.keep_bones = KeepBones() if keep_bones else None
+        # The decoder's last layers (models/finish.py): the seam with the history, bones of fixed length.
+        self.finish_layer = Finish(max_frames, seam, keep_bones) if (seam or keep_bones) else None
         k = joints * 3
         self.register_buffer("pose_mean", pose_mean.reshape(1, 1, k).float())
         self.register_buffer("pose_std", pose_std.reshape(1, 1, k).float())
@@ -79,12 +80,12 @@ class WatCVAE(nn.Module):
         mu, logvar = self.split(self.prior(torch.cat([h_x, self.action_embed(action)], -1)))
         return mu, logvar, h_x
 
-    def finish(self, frames: torch.Tensor) -> torch.Tensor:
-        return frames if self.keep_bones is None else self.keep_bones(frames)
+    def finish(self, frames: torch.Tensor, history: torch.Tensor) -> torch.Tensor:
+        return frames if self.finish_layer is None else self.finish_layer(frames, history[:, -2:])
 
     def decode_from(self, z: torch.Tensor, history: torch.Tensor, action: torch.Tensor) -> torch.Tensor:
         h_x = self.encode_history(self.normalise(history))
-        return self.finish(self.decode(h_x, self.action_embed(action), z, history))
+        return self.finish(self.decode(h_x, self.action_embed(action), z, history), history)
 
     def forward(self, history: torch.Tensor, action: torch.Tensor, future: torch.Tensor, future_length: torch.Tensor):
         """Training pass: z from the posterior (reparameterised) -> (prediction, posterior, prior) params."""
@@ -94,7 +95,7 @@ class WatCVAE(nn.Module):
         mu, logvar = self.split(self.posterior(torch.cat([h_x, h_y, a], -1)))
         prior_mu, prior_logvar = self.split(self.prior(torch.cat([h_x, a], -1)))
         z = mu + (0.5 * logvar).exp() * torch.randn_like(mu)
-        return self.finish(self.decode(h_x, a, z, history)), mu, logvar, prior_mu, prior_logvar
+        return self.finish(self.decode(h_x, a, z, history), history), mu, logvar, prior_mu, prior_logvar
 
 
 class WatRNN(WatCVAE):
@@ -200,9 +201,11 @@ class WatRNN(WatCVAE):
         return frames.reshape(b, self.max_frames, self.joints, 3)
 
     def rollout_setup(self, z, history, action):
-        """The decoder's start for the exported rollout: (x_N [B, K], h_0, c = [h_x, a, z])."""
+        """The decoder's start for the exported rollout: (x_N [B, K], h_0, c = [h_x, a, z][, the history's
+        last two frames for the finishing layers])."""
         c = torch.cat([self.encode_history(self.normalise(history)), self.action_embed(action), z], -1)
-        return history[:, -1].flatten(1), torch.tanh(self.decoder_init(c)), c
+        start = (history[:, -1].flatten(1), torch.tanh(self.decoder_init(c)), c)
+        return start if self.finish_layer is None else start + (history[:, -2:],)
 
     def rollout(self) -> GruRollout:
         """`decode_reference`'s step with the normalisation folded into the weights (raw metres)."""
@@ -249,4 +252,4 @@ class RolloutDecoderGraph(DecoderGraph, RolloutGraph):
         return self.model.rollout()
 
     def finish(self) -> nn.Module | None:
-        return self.model.keep_bones
+        return self.model.finish_layer

@@ -174,7 +174,7 @@ class WatTransformer(WatCVAE):
 
     def decode_from(self, z, history, action):
         # No history features: keeps the prior encoder out of the decoder graph.
-        return self.finish(self.decode(None, self.action_embed(action), z, history))
+        return self.finish(self.decode(None, self.action_embed(action), z, history), history)
 
     def forward(self, history, action, future, future_length):
         """Training pass: z from the posterior (reparameterised) -> (prediction, posterior, prior) params."""

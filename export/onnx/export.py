@@ -82,16 +82,20 @@ def to_onnx(graph: GraphDef) -> bytes:
     inputs = [s.name for s in graph.inputs]
     if isinstance(module, RolloutGraph):
         rollout = module.rollout()
-        setup_outputs = ["setup_seed", "setup_h0"] + (["setup_context"] if rollout.context_size else [])
-        model = _torch_export(RolloutSetup(module), graph.example_inputs, inputs, setup_outputs)
         finish = module.finish()
+        setup_outputs = ["setup_seed", "setup_h0"] + (["setup_context"] if rollout.context_size else [])
+        setup_outputs += ["setup_anchor"] if finish is not None else []
+        model = _torch_export(RolloutSetup(module), graph.example_inputs, inputs, setup_outputs)
         out = graph.outputs[0].name
-        model = append_rollout(model, rollout, out if finish is None else "rollout_raw")
+        model = append_rollout(model, rollout, out if finish is None else "rollout_raw", keep=int(finish is not None))
         if finish is not None:
-            # The finishing layer is exported by torch on its own and joined to the rollout's output.
+            # The finishing layer (models/finish.py) is exported by torch on its own and joined to the
+            # rollout's frames and the setup's anchor (the history's last two frames).
             frames = torch.zeros(2, rollout.steps, *rollout.frame_shape)
-            tail = _torch_export(finish.eval(), (frames,), ["frames"], [out])
-            model = onnx.compose.merge_models(model, tail, io_map=[("rollout_raw", "frames")], prefix2="finish_")
+            anchor = torch.zeros(2, 2, *rollout.frame_shape)
+            tail = _torch_export(finish.eval(), (frames, anchor), ["frames", "anchor"], [out])
+            model = onnx.compose.merge_models(model, tail, io_map=[("rollout_raw", "frames"), ("setup_anchor", "anchor")],
+                                              prefix2="finish_", outputs=["finish_" + out])
             for o in model.graph.output:
                 o.name = out if o.name == "finish_" + out else o.name
             for node in model.graph.node:

@@ -22,14 +22,17 @@ def _onnx_gates(w: np.ndarray) -> np.ndarray:
     return np.concatenate([z, r, n], axis=0)
 
 
-def append_rollout(setup: onnx.ModelProto, rollout: GruRollout, output: str) -> onnx.ModelProto:
-    """setup's outputs (seed, h0[, context]) feed the recurrence; the result is one output `output`
-    of shape [batch, steps, *frame_shape]. The setup outputs stop being graph outputs."""
+def append_rollout(setup: onnx.ModelProto, rollout: GruRollout, output: str, keep: int = 0) -> onnx.ModelProto:
+    """setup's outputs (seed, h0[, context], then `keep` more) feed the recurrence; the result is the
+    output `output` of shape [batch, steps, *frame_shape], followed by the `keep` last setup outputs
+    (for a finishing layer, e.g. the history's last frames). The others stop being graph outputs."""
     g = setup.graph
     names = [o.name for o in g.output]
+    kept = list(g.output)[len(names) - keep:] if keep else []
+    names = names[:len(names) - keep]
     seed, h0 = names[0], names[1]
     context = names[2] if len(names) > 2 else None
-    if (context is None) != (rollout.context_size == 0):
+    if (context is None) != (rollout.context_size == 0) or len(names) > 3:
         raise ValueError(f"setup gives {len(names)} outputs but the rollout expects a context of "
                          f"{rollout.context_size}")
     hidden = rollout.w_hidden.shape[1]
@@ -75,4 +78,5 @@ def append_rollout(setup: onnx.ModelProto, rollout: GruRollout, output: str) -> 
     del g.output[:]
     g.output.append(helper.make_tensor_value_info(output, onnx.TensorProto.FLOAT,
                                                   ["batch", rollout.steps, *rollout.frame_shape]))
+    g.output.extend(kept)
     return setup

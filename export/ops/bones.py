@@ -34,3 +34,17 @@ def project_lengths(motion: np.ndarray, lengths: np.ndarray, skeleton: Skeleton 
         unit = np.divide(d, norm, out=np.zeros_like(d), where=norm > 1e-12)
         out[..., child, :] = out[..., parent, :] + lengths[b] * unit
     return out
+
+
+def keep_bones(motion: np.ndarray, skeleton: Skeleton = SKELETON) -> np.ndarray:
+    """A canonical motion (root-relative poses, the root channel in the root joint's x and z,
+    export/ops/facing.py) with the skeleton's bone lengths: the numpy form of the models' last layer
+    (export/models/keep_bones.py), for futures made outside a graph (Keyposes' interpolation)."""
+    m = np.asarray(motion, dtype=np.float64)
+    pose = m.copy()
+    pose[..., 0, 0] = 0.0
+    pose[..., 0, 2] = 0.0
+    out = project_lengths(pose, skeleton.bone_lengths(), skeleton)
+    out[..., 0, 0] = m[..., 0, 0]
+    out[..., 0, 2] = m[..., 0, 2]
+    return out

@@ -60,3 +60,12 @@ def on_floor(positions: np.ndarray, skeleton: Skeleton = SKELETON) -> np.ndarray
     out = positions.copy()
     out[..., 1] -= (a * root[:, 0] + b * root[:, 2] + c)[:, None]
     return out
+
+
+def floor_penalty(motion):
+    """A training term (torch): the mean over frames of relu(-y)^2 of the foot (the lower of ankle and
+    toe), square metres. Heights are the same in a canonical motion as in the world (y stays up), so
+    it acts on the models' tensors directly: feet may touch and leave the floor, not sink through it."""
+    idx = [SKELETON.index(n) for n in FEET]
+    feet = motion[..., idx, 1].amin(-1)
+    return (-feet).clamp_min(0.0).pow(2).mean()

@@ -13,7 +13,6 @@ from dataclasses import dataclass, field
 import dataclasses
 
 import numpy as np
-from scipy.spatial.distance import cdist
 
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
@@ -140,9 +139,14 @@ def instance_starts(clip: Clip, start_search: int, mirror: bool) -> list[tuple[t
 
 def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: float, t0_cap: int,
                start_search: int, same_copies: int, weak: bool, mirror: bool, min_future: int,
-               seed: int) -> Bank:
+               seed: int, cross_per_history: int | None = None) -> Bank:
     """Every training history, every instance, and the pairs: `same_copies` same pairs per history and,
-    when `weak`, one cross pair per other action (random phase / mirror, nearest start, capped T0)."""
+    when `weak`, cross pairs with other actions (random clip of the action, phase / mirror, nearest
+    start, capped T0): one per other action, or `cross_per_history` other actions drawn at random.
+
+    With many actions (24 in the default data) one pair per other action would make 23 cross pairs per
+    history against 4 same ones; drawing a few keeps continuing an action as much of the training as
+    switching to another, while every action is still paired with every other across the bank."""
     rng = np.random.default_rng(seed)
     train = [cached_repeats(c) for c in clips if c.split.train]
     hist, hist_act, inst, inst_len, inst_act = [], [], [], [], []
@@ -167,17 +171,19 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
 
     uncapped = []
     if weak:
-        cross = {}
+        x_last = np.stack(hist)[:, -1].reshape(len(hist), -1).astype(np.float64)
+        by_action: dict[int, list[tuple[Clip, dict, dict]]] = {}
         for clip in train:
             a = actions.index(clip.action)
-            cross[clip.name] = (clip, {key: add_instance(frames, a) for key, frames in instance_starts(clip, start_search, mirror)})
-        x_last = np.stack(hist)[:, -1].reshape(len(hist), -1).astype(np.float64)
-        first = np.stack([f[0] for f in inst]).reshape(len(inst), -1).astype(np.float64)
-        dist = cdist(x_last, first)                                   # ||x_N - y'_1|| for every pairing
+            ids = {key: add_instance(frames, a) for key, frames in instance_starts(clip, start_search, mirror)}
+            first = {i: inst[i][0].reshape(-1).astype(np.float64) for i in ids.values()}
+            by_action.setdefault(a, []).append((clip, ids, first))
         for hi in range(len(hist)):
-            for clip, ids in cross.values():
-                if actions.index(clip.action) == hist_act[hi]:
-                    continue
+            others = sorted(a for a in by_action if a != hist_act[hi])
+            if cross_per_history is not None and cross_per_history < len(others):
+                others = sorted(rng.choice(others, size=cross_per_history, replace=False).tolist())
+            for a in others:
+                clip, ids, first = by_action[a][int(rng.integers(len(by_action[a])))]
                 m = bool(rng.integers(2)) if mirror else False
                 period = loop_period(clip)
                 if period:
@@ -186,8 +192,10 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
                 else:
                     r = int(rng.integers(len(clip.split.train)))
                     cand = [i for (g, _, mm), i in ids.items() if g == r and mm == m]
-                best = cand[int(np.argmin(dist[hi, cand]))]
-                uncapped.append(int(np.floor(k * dist[hi, best])))
+                # ||x_N - y'_1|| for the few candidate starts only (all pairings would not fit in memory)
+                dist = np.linalg.norm(np.stack([first[i] for i in cand]) - x_last[hi], axis=1)
+                best = cand[int(np.argmin(dist))]
+                uncapped.append(int(np.floor(k * dist.min())))
                 pair_h.append(hi), pair_i.append(best)
                 pair_t0.append(min(uncapped[-1], t0_cap)), pair_same.append(False)
 

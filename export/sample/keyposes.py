@@ -17,7 +17,9 @@ import numpy as np
 from ..data.skeleton import SKELETON
 from ..ops import keyposes as kp
 from ..ops.facing import canonicalise, place, root_relative, rotate_about_y, split_root
+from ..ops.bones import keep_bones
 from ..ops.keypose_travel import travel
+from ..ops.seam import continue_history
 from ..ops.keypose_interpolation import interpolate, keypose_times
 from ..ops.proximity import face_forward, proximity, sample_index, softmax
 from ..paths import MODELS_DIR
@@ -152,10 +154,14 @@ class KeyposesPredictor(Predictor):
             seq = np.concatenate([np.repeat(present[None, None], k, 0), futures[:, :r]], 1).astype(np.float32)
             futures = self.runner.run("refine", {"sequence": seq})["refined"].astype(np.float64)
         futures = futures[:, :horizon]
-        # The root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z.
+        # The root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z; then
+        # the seam with the history (ops/seam.py) and the skeleton's bone lengths (ops/bones.py), as the
+        # graphs of the other methods end.
         for s in range(k):
             futures[s, :, 0, [0, 2]] = travel(labels[s], [lengths[c] for c in classes[s]], self.root_velocity,
                                               horizon).T
+        if p.get("finish", True):
+            futures = keep_bones(continue_history(futures, canon[None, -2:]))
         futures = place(futures, placement).astype(np.float32)
 
         samples, ghost_frames, ghost_poses = [], [], []

@@ -82,8 +82,8 @@ class LcpVaePredictor(Predictor):
             canon = np.stack(canon)
             cond = self.runner.run("condition", {"history": canon})
             z, c = sample_latents(prng, cond, k, scale, self.params)
-            last_pose = np.broadcast_to(canon[:, -1], (k,) + canon.shape[2:]).copy()
-            feeds = {"z": z, "last_pose": last_pose}
+            last_poses = np.broadcast_to(canon[:, -2:], (k, 2) + canon.shape[2:]).copy()   # the seam needs two
+            feeds = {"z": z, "last_poses": last_poses}
             if c_spec:
                 feeds["c"] = c
             future = self.runner.run("decoder", feeds)["future"]

@@ -12,6 +12,9 @@ import numpy as np
 
 from ..manifest import entry as find_entry, read_manifest
 from ..paths import MODELS_DIR
+from ..ops.envelope import check
+from .canonical import to_canonical
+from .guard import cut_out_of_bounds
 from .request import Prediction, Request, check_history, check_request
 from .runner import GraphRunner
 
@@ -23,11 +26,23 @@ class Predictor:
         self.runner = GraphRunner(entry, models_dir, precision)
 
     def predict(self, history: np.ndarray, req: Request) -> Prediction:
-        """history [frames, J, 3] in the world frame -> K futures in the same frame."""
+        """history [frames, J, 3] in the world frame -> K futures in the same frame, each cut at its
+        first out-of-bounds frame (guard.py), with warnings for a history outside the training envelope."""
         joints = len(self.manifest["skeleton"]["joints"])
-        history = check_history(history, self.params["history_frames"], joints)
+        n = self.params["history_frames"]
+        history = check_history(history, n, joints)
         check_request(req, self.entry, self.manifest["actions"], self.manifest["fps"])
-        return self._predict(history, req)
+        env = self.params.get("envelope")
+        warnings = check(to_canonical(history[-n:])[0], env, self.manifest["fps"]) if env else []
+        pred = self._predict(history, req)
+        cut_out_of_bounds(pred.futures, pred.lengths, pred.samples, history[-n:])
+        if pred.ghosts is not None:      # keypose ghosts past a cut go with it
+            for i, s in enumerate(pred.samples):
+                keep = len(s.get("marks", pred.ghosts["frames"][i]))
+                pred.ghosts["frames"][i] = pred.ghosts["frames"][i][:keep]
+                pred.ghosts["poses"][i] = pred.ghosts["poses"][i][:keep]
+        pred.warnings = warnings
+        return pred
 
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         raise NotImplementedError

@@ -51,11 +51,13 @@ class Prediction:
     # Decisions with their distance to the threshold that made them (stop tests, sampled labels):
     # the end-to-end vectors keep only cases whose smallest margin is at least 1e-3.
     margins: list[float] = field(default_factory=list)
+    # History quantities outside the training envelope (ops/envelope.py): predicted anyway, marked.
+    warnings: list[dict] = field(default_factory=list)
 
     def to_json(self) -> dict:
         return {"k": int(self.futures.shape[0]), "frames": int(self.futures.shape[1]),
                 "lengths": [int(x) for x in self.lengths], "samples": self.samples, "notes": self.notes,
-                "curves": self.curves, "readouts": self.readouts,
+                "curves": self.curves, "readouts": self.readouts, "warnings": self.warnings,
                 **({"ghosts": {"frames": self.ghosts["frames"],
                                "poses": [np.asarray(p, np.float32).tolist() for p in self.ghosts["poses"]]}}
                    if self.ghosts is not None else {}),

@@ -7,7 +7,7 @@ import { readVector, tolerance, worstDiff } from './helpers/vectors';
 interface Case {
   model: string; model_hash: string; clip: string; start: number; history: number[][][];
   request: { k: number; seed: number; actions: string[]; horizon_frames?: number; controls: Record<string, number | boolean> };
-  lengths: number[]; futures: number[][][][];
+  lengths: number[]; warnings: string[]; cuts: (number | null)[]; futures: number[][][][];
 }
 const vector = readVector<{ cases: Case[] }>('e2e');
 const manifest = loadManifest();
@@ -27,6 +27,8 @@ describe('end-to-end vector (Python predictor -> TypeScript predictor)', () => {
         { k: c.request.k, seed: c.request.seed, actions: c.request.actions, horizonFrames: c.request.horizon_frames, controls: c.request.controls },
       );
       expect(Array.from(pred.lengths)).toEqual(c.lengths);
+      expect((pred.warnings ?? []).map((w) => w.quantity)).toEqual(c.warnings);
+      expect(pred.samples.map((s) => s.cut?.frame ?? null)).toEqual(c.cuts);
       expect(worstDiff(pred.futures, c.futures.flat(3))).toBeLessThanOrEqual(tolerance(vector, c.model));
     });
   }

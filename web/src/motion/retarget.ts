@@ -73,6 +73,53 @@ export function resamplePoints(src: Float64Array, frames: number, width: number,
   return { points: out, frames: n };
 }
 
+export const LEADING_STEPS = 10;
+export const LEADING_LEGS = 0.05;
+export const LEADING_MAX = 3;
+
+function median(values: number[]): number {
+  const v = [...values].sort((a, b) => a - b);
+  const m = v.length >> 1;
+  return v.length % 2 ? v[m] : (v[m - 1] + v[m]) / 2;
+}
+
+/** How many leading source frames are far from the rest of the take (a T-pose put first), twin of
+ *  retarget.py's leading_outliers: frame 0 goes while its step (mean over the mapped points) is more
+ *  than LEADING_STEPS times the median step and more than LEADING_LEGS leg lengths, at most LEADING_MAX. */
+export function leadingOutliers(pts: Float64Array, frames: number, n: number, sources: (number[] | null)[], joints: string[]): number {
+  const used = [...new Set(sources.flatMap((s) => s ?? []))].sort((a, b) => a - b);
+  if (frames < 3 || used.length === 0) return 0;
+  const steps: number[] = [];
+  for (let f = 0; f + 1 < frames; f++) {
+    let s = 0;
+    for (const i of used) {
+      const a = (f * n + i) * 3;
+      const b = ((f + 1) * n + i) * 3;
+      s += Math.hypot(pts[b] - pts[a], pts[b + 1] - pts[a + 1], pts[b + 2] - pts[a + 2]);
+    }
+    steps.push(s / used.length);
+  }
+  const mean = (idx: number[], f: number, c: number) => idx.reduce((t, i) => t + pts[(f * n + i) * 3 + c], 0) / idx.length;
+  const legsPerFrame: number[] = [];
+  for (let f = 0; f < frames; f++) {
+    let total = 0;
+    for (const [h, k, a] of LEGS) {
+      const [qh, qk, qa] = [sources[joints.indexOf(h)]!, sources[joints.indexOf(k)]!, sources[joints.indexOf(a)]!];
+      const p = (idx: number[]) => [0, 1, 2].map((c) => mean(idx, f, c));
+      const [ph, pk, pa] = [p(qh), p(qk), p(qa)];
+      total += Math.hypot(ph[0] - pk[0], ph[1] - pk[1], ph[2] - pk[2]) + Math.hypot(pk[0] - pa[0], pk[1] - pa[1], pk[2] - pa[2]);
+    }
+    legsPerFrame.push(total / LEGS.length);
+  }
+  const leg = median(legsPerFrame);
+  let drop = 0;
+  while (drop < LEADING_MAX && steps.length - drop > 2) {
+    if (!(steps[drop] > LEADING_STEPS * median(steps.slice(drop)) && steps[drop] > LEADING_LEGS * leg)) break;
+    drop += 1;
+  }
+  return drop;
+}
+
 /** Source points -> project positions [frames, joints, 3] at 30 Hz, float64. */
 export function retarget(
   src: SourcePoints, map: JointMap, skeleton: Skeleton, where: string, minFrames = MIN_FRAMES,
@@ -99,7 +146,9 @@ export function retarget(
     pts = new Float64Array(src.points.length);
     for (let i = 0; i < pts.length; i += 3) { pts[i] = src.points[i]; pts[i + 1] = src.points[i + 2]; pts[i + 2] = -src.points[i + 1]; }
   }
-  const rs = resamplePoints(pts, src.frames, n * 3, frameTime);
+  // a leading T-pose (or any leading frame far from the rest of the take) goes, by rule
+  const drop = leadingOutliers(pts, src.frames, n, sources, joints);
+  const rs = resamplePoints(pts.subarray(drop * n * 3), src.frames - drop, n * 3, frameTime);
   const F = rs.frames;
   if (F < minFrames) {
     throw new RetargetError(`${where}: too few frames: ${src.frames} at ${Number((1 / frameTime).toPrecision(4))} Hz is ${F} at 30 Hz, `

@@ -10,6 +10,8 @@ import { rotateAboutY } from '../motion/facing';
 import { interpolateKeyposes, keyposeTimes } from '../sampling/keypose-interpolation';
 import { durationClass, extractKeyposes, faceForward, labelDistribution, nearestCentre, prune, travel } from '../sampling/keyposes';
 import { sampleIndex } from '../sampling/temperature';
+import { continueHistory } from '../sampling/seam';
+import { keepBones } from '../motion/bones';
 import { canonicalise, place, rootRelative, splitRoot } from './canonical';
 import { checkHistory, checkRequest, horizonFrames } from './request';
 import {
@@ -22,6 +24,8 @@ interface KeyposesParams {
   label_temperature: number;
   keyposes: { threshold: number; clusters: number; min_observed: number; max_observed: number; layers: number; hidden: number };
   duration_classes: { bounds: number[]; lengths: number[] };
+  /** The seam with the history and fixed bone lengths (false only in the no-shape ablation). */
+  finish?: boolean;
 }
 
 export interface Observed {
@@ -214,7 +218,9 @@ export class KeyposesPredictor implements Predictor {
         cut[(q * horizon + f) * s + 2] = path[f * 2 + 1];
       }
     }
-    const world = Float32Array.from(place(cut, j, placement));
+    // then the seam with the history and the skeleton's bone lengths, as the other methods' graphs end
+    const finished = p.finish === false ? cut : keepBones(continueHistory(cut, k, horizon, s, canonical.subarray((n - 2) * s, n * s)), k * horizon, skeleton);
+    const world = Float32Array.from(place(finished, j, placement));
 
     const samples: SampleInfo[] = [];
     const ghostFrames: number[][] = [];

@@ -104,14 +104,14 @@ export class LcpVaePredictor implements Predictor {
       });
       const cond = await runner.run('condition', { history: { data: canon, dims: [rows, n, j, 3] } });
       const { z, c } = sampleLatents(prng, cond, k, scale, params);
-      const lastPose = new Float32Array(k * stride);
+      const lastPoses = new Float32Array(k * 2 * stride);      // the history's last two poses (the seam needs both)
       for (let i = 0; i < k; i++) {
         const r = rows === 1 ? 0 : i;
-        lastPose.set(canon.subarray(r * histLen + (n - 1) * stride, (r + 1) * histLen), i * stride);
+        lastPoses.set(canon.subarray(r * histLen + (n - 2) * stride, (r + 1) * histLen), i * 2 * stride);
       }
       const feeds: Record<string, Tensor> = {
         z: { data: z, dims: [k, params.latent_size] },
-        last_pose: { data: lastPose, dims: [k, j, 3] },
+        last_poses: { data: lastPoses, dims: [k, 2, j, 3] },
       };
       if (params.decoder_condition && c) feeds.c = { data: c, dims: [k, params.decoder_condition.size] };
       if (isCancelled()) throw new Superseded();
