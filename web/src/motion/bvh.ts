@@ -6,8 +6,8 @@ import { BVHLoader } from 'three/examples/jsm/loaders/BVHLoader.js';
 import type { Bone, QuaternionKeyframeTrack, VectorKeyframeTrack } from 'three';
 import type { Skeleton } from '../contract/types';
 import type { Motion } from './clip';
-import { JointMapError, loadJointMap } from './joint-map';
-import { MIN_FRAMES, RetargetError, retarget, type SourcePoints } from './retarget';
+import { BVH_MAPS, JointMapError, loadJointMap, type JointMap } from './joint-map';
+import { MIN_FRAMES, RetargetError, resolveJoints, retarget, type SourcePoints } from './retarget';
 
 // The same limits as export/data/bvh.py: a hostile or accidental file must not exhaust the tab.
 export const MAX_JOINTS = 1000;
@@ -19,7 +19,7 @@ const NUMBER = /^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$/;
 const WS = /[ \t\f\v]+/;
 const CHUNK = 2000;
 
-export type ImportProblem = 'not-bvh' | 'too-large' | 'unknown-skeleton' | 'too-few-frames' | 'bad-joint-map' | 'bad-values';
+export type ImportProblem = 'not-bvh' | 'not-asf-amc' | 'too-large' | 'unknown-skeleton' | 'too-few-frames' | 'bad-joint-map' | 'bad-values';
 
 /** Every way a file can fail to import; `message` names the file and the problem. */
 export class MotionImportError extends Error {
@@ -252,7 +252,7 @@ export interface ImportedMotion extends Motion {
   origin: {
     kind: 'dropped-file';
     file: string;
-    format: 'bvh';
+    format: 'bvh' | 'asf-amc';
     sourceFrames: number;
     sourceFps: number;
     jointMap: string;
@@ -264,7 +264,8 @@ export interface ImportedMotion extends Motion {
 export interface ImportOptions {
   /** The project skeleton with offsets (the clip index's or manifest's). */
   skeleton: Skeleton;
-  /** A user's joint map override (parsed JSON) on top of cmu-bvh. */
+  /** A user's joint map override (parsed JSON) on top of the built-in map (importBvh: each of BVH_MAPS in
+   *  turn, cmu-bvh first; importAsfAmc: cmu-asf). */
   jointMap?: unknown;
   jointMapName?: string;
   minFrames?: number;
@@ -276,16 +277,29 @@ export function motionName(file: string): string {
   return stem.toLowerCase().replace(/[^a-z0-9_.-]+/g, '_').replace(/^[_.-]+/, '') || 'dropped';
 }
 
+function resolves(map: JointMap, names: string[], joints: string[]): boolean {
+  try {
+    resolveJoints(map, names, joints, '');
+    return true;
+  } catch (err) {
+    if (err instanceof RetargetError) return false;
+    throw err;
+  }
+}
+
 /** BVH text -> ImportedMotion at 30 Hz on the project skeleton; throws MotionImportError only. */
 export function importBvh(text: string, file: string, options: ImportOptions): ImportedMotion {
   const { skeleton } = options;
-  let map;
+  let maps: JointMap[];
   try {
-    map = loadJointMap('cmu-bvh', skeleton.joints, options.jointMap, options.jointMapName ?? 'joint map');
+    // each built-in BVH map with the user's override on top (an override that `extends` a map names its own base)
+    maps = BVH_MAPS.map((base) => loadJointMap(base, skeleton.joints, options.jointMap, options.jointMapName ?? 'joint map'));
   } catch (err) {
     throw new MotionImportError((err as Error).message, 'bad-joint-map');
   }
   const src = bvhPoints(text, file);
+  // the first map whose joint names the file has; when none fits, the first (cmu-bvh) names what is missing
+  const map = maps.find((m) => resolves(m, src.names, skeleton.joints)) ?? maps[0];
   let out;
   try {
     out = retarget(src, map, skeleton, file, options.minFrames ?? MIN_FRAMES);

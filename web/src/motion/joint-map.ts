@@ -1,6 +1,8 @@
 // Joint maps (contract/joint-maps/*.json): which source point each project joint follows.
 // Twin of the map half of export/data/retarget.py; both read the same JSON files.
+import cmuAsf from '../../../contract/joint-maps/cmu-asf.json';
 import cmuBvh from '../../../contract/joint-maps/cmu-bvh.json';
+import daz from '../../../contract/joint-maps/daz.json';
 import smpl from '../../../contract/joint-maps/smpl.json';
 
 export type Alternative = string | null;
@@ -25,9 +27,15 @@ export interface JointMap {
 }
 
 export const BUILTIN_MAPS: Record<string, JointMapDoc> = {
+  'cmu-asf': cmuAsf as JointMapDoc,
   'cmu-bvh': cmuBvh as JointMapDoc,
+  daz: daz as JointMapDoc,
   smpl: smpl as JointMapDoc,
 };
+
+/** The built-in maps a dropped BVH is tried with, in this order: the first whose joint names the file
+ *  has wins (cmu-bvh first, so CMU-style files read as before; then Daz-style skeletons). */
+export const BVH_MAPS = ['cmu-bvh', 'daz'];
 
 /** Joints whose point may be derived when the source lacks it (alternative null). */
 export const DERIVABLE = ['head', 'right_toe', 'left_toe'];
