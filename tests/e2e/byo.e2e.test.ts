@@ -43,6 +43,9 @@ describe('bring your own motion', () => {
     expect(await page.locator('.import-status').textContent()).toMatch(/my_walk: 46 frames at 30 Hz .* from 151 at 100 Hz, joint map cmu-bvh/);
     const stage = await page.evaluate(() => { const s = window.motionFutures!.onStage(); return { name: s.motion?.name, frames: s.motion?.frames, source: s.source }; });
     expect(stage).toEqual({ name: 'my_walk', frames: 46, source: { kind: 'dropped', name: 'My Walk.bvh' } });
+    // a dropped file predicts again on its own (issue 20: never stale)
+    await page.waitForFunction(() => window.motionFutures!.predictor.last?.clip === 'my_walk' && document.body.dataset.predictStatus === 'done',
+      undefined, { timeout: 90_000 });
 
     await page.locator('#model-select').selectOption('regression-gru');
     await page.locator('#history-start').fill('20');

@@ -5,6 +5,7 @@ import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page, Request } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
+import { defaultHistory, index } from './data';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
@@ -16,6 +17,9 @@ const MODEL_A = manifest.models[0].id as string;
 const MODEL_B = manifest.models[1].id as string;
 // The host page lives outside the site's folder: assets must resolve from the script, not the page.
 const HOST_URL = `${origin}/elsewhere/project/page.html`;
+// A training clip for the first widget, the default test history for the second (from the clip index).
+const CLIP_A = (index.clips.find((c) => c.role === 'train' && c.frames >= 30) ?? index.clips[0]).name;
+const CLIP_B = defaultHistory().clip.name;
 
 const hostPage = (body: string) => `<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>A project page</title>
@@ -25,8 +29,8 @@ const hostPage = (body: string) => `<!doctype html>
 const TWO = hostPage(`
 <script type="module" src="${baseUrl}assets/motion-futures.js"></script>
 <div class="cols">
-  <motion-futures id="a" model="${MODEL_A}" clip="walk" seed="1" autoplay style="height: 420px"></motion-futures>
-  <motion-futures id="b" model="${MODEL_B}" clip="walker_walk_forward" seed="2" controls="full" autoplay style="height: 620px"></motion-futures>
+  <motion-futures id="a" model="${MODEL_A}" clip="${CLIP_A}" seed="1" autoplay style="height: 420px"></motion-futures>
+  <motion-futures id="b" model="${MODEL_B}" clip="${CLIP_B}" seed="2" controls="full" autoplay style="height: 620px"></motion-futures>
 </div>`);
 
 const done = (page: Page, id: string) =>
@@ -53,8 +57,8 @@ describe('two widgets on a host page', () => {
     await Promise.all([done(page, 'a'), done(page, 'b')]);
     expect(await page.locator('#a').getAttribute('data-prediction-model')).toBe(MODEL_A);
     expect(await page.locator('#b').getAttribute('data-prediction-model')).toBe(MODEL_B);
-    expect(await page.locator('#a').getAttribute('data-current-clip')).toBe('walk');
-    expect(await page.locator('#b').getAttribute('data-current-clip')).toBe('walker_walk_forward');
+    expect(await page.locator('#a').getAttribute('data-current-clip')).toBe(CLIP_A);
+    expect(await page.locator('#b').getAttribute('data-current-clip')).toBe(CLIP_B);
     // minimal controls: no side panel, the one-line bar instead; full controls: the panel
     expect(await page.locator('#a #panel').isVisible()).toBe(false);
     expect(await page.locator('#a .mini-bar').isVisible()).toBe(true);
@@ -140,7 +144,7 @@ describe('embed.html in an iframe', () => {
     const session = await openBrowser({ viewport: { width: 900, height: 700 } });
     try {
       const { page } = session;
-      const src = `${baseUrl}embed.html?model=${MODEL_B}&clip=walk&seed=3&autoplay=1`;
+      const src = `${baseUrl}embed.html?model=${MODEL_B}&clip=${CLIP_A}&seed=3&autoplay=1`;
       await page.route(HOST_URL, (route) => route.fulfill({
         status: 200, contentType: 'text/html',
         body: hostPage(`<iframe id="f" src="${src}" width="720" height="460" style="border: 1px solid #999"></iframe>`),
@@ -150,7 +154,7 @@ describe('embed.html in an iframe', () => {
       await frame.locator('motion-futures[data-predict-status="done"]').waitFor({ state: 'attached', timeout: 120_000 });
       const widget = frame.locator('motion-futures');
       expect(await widget.getAttribute('data-prediction-model')).toBe(MODEL_B);
-      expect(await widget.getAttribute('data-current-clip')).toBe('walk');
+      expect(await widget.getAttribute('data-current-clip')).toBe(CLIP_A);
       expect(await frame.locator('#panel').isVisible()).toBe(false); // minimal by default
       await expect.poll(() => frame.getByTestId('play').getAttribute('aria-label')).toBe('Pause'); // autoplay=1
       await session.screenshot('embed-iframe.png');

@@ -6,6 +6,7 @@ import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { CDPSession } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
+import { defaultHistory } from './data';
 
 const baseUrl = inject('baseUrl');
 const manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
@@ -74,7 +75,7 @@ describe('memory of repeated predictions', () => {
     const heaps = await Heaps.attach(cdp);
     await page.goto(`${baseUrl}bench.html`);
     await page.evaluate(() => window.mfBench!.ready);
-    const c = { model: model.id, clip: 'walker_walk_forward', start: 3, request: { k: K, seed: 1 } };
+    const c = { model: model.id, clip: defaultHistory().clip.name, start: defaultHistory().start, request: { k: K, seed: 1 } };
     const run = (n: number) => page.evaluate((a) => window.mfBench!.run(a.c, 0, a.n).then((r) => ({
       wasm: r.wasmBytes, k: r.lengths.length, ms: r.workerMs.reduce((s, x) => s + x, 0) / r.workerMs.length,
     })), { c, n });

@@ -7,6 +7,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page, Response } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
+import { defaultHistory, otherClip } from './data';
 import { pixelStats } from './pixels';
 import { freePort, ROOT } from './server';
 
@@ -19,6 +20,9 @@ const modelFiles: string[] = manifest.models.flatMap((m: { graphs: Record<string
 /** The model the offline test switches to: not the default one, so a second model loads offline. */
 const OTHER_MODEL: string = (manifest.models[1] ?? manifest.models[0]).id;
 const DIST = join(ROOT, 'dist');
+/** Clips to switch to (from the clip index): two besides the one the page opens on. */
+const CLIP_1 = otherClip(defaultHistory().clip.name).name;
+const CLIP_2 = otherClip(CLIP_1).name;
 
 const predicted = (page: Page) =>
   page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 120_000 });
@@ -41,6 +45,14 @@ describe('offline', () => {
     await page.goto(baseUrl);
     await predicted(page);
     await controlled(page);
+    // The page says it is safe to go offline once the service worker is active (its precache complete), with the size.
+    await page.waitForSelector('body[data-offline="ready"]', { state: 'attached', timeout: 180_000 });
+    const state = page.getByTestId('offline-state');
+    expect(await state.isVisible()).toBe(true);
+    expect(await state.textContent()).toMatch(/^Ready offline \(\d+(\.\d)? MB saved\)$/);
+    const bytes = Number(await page.evaluate(() => document.body.dataset.offlineBytes));
+    expect(bytes, 'bytes in the caches: at least the 14 MB wasm').toBeGreaterThan(10e6);
+    console.log(`ready offline: ${await state.textContent()}`);
     const cached: string[] = await page.evaluate(async () => {
       const urls: string[] = [];
       for (const name of await caches.keys()) for (const req of await (await caches.open(name)).keys()) urls.push(new URL(req.url).pathname);
@@ -62,8 +74,8 @@ describe('offline', () => {
     try {
       await page.reload();
       await predicted(page);
-      await page.locator('[data-clip="run"]').click();
-      await page.waitForSelector('body[data-current-clip="run"][data-clip-status="ready"]', { state: 'attached' });
+      await page.locator(`[data-clip="${CLIP_1}"]`).click();
+      await page.waitForSelector(`body[data-current-clip="${CLIP_1}"][data-clip-status="ready"]`, { state: 'attached' });
       await page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
       await page.locator('#model-select').selectOption(OTHER_MODEL);
       await page.locator('#predict').click();
@@ -79,7 +91,7 @@ describe('offline', () => {
     }
     const urls = responses.map((r) => new URL(r.url()).pathname);
     // Not vacuous: the page, the scripts, the wasm, the models and the clips were all asked for.
-    for (const want of [/\/$/, /motion-futures\.js$/, /worker-[^/]*\.js$/, /ort-wasm[^/]*\.wasm$/, /models\/manifest\.json$/, /\.onnx$/, /clips\/run\.json$/]) {
+    for (const want of [/\/$/, /motion-futures\.js$/, /worker-[^/]*\.js$/, /ort-wasm[^/]*\.wasm$/, /models\/manifest\.json$/, /\.onnx$/, new RegExp(`clips/${CLIP_1}\\.json$`)]) {
       expect(urls.some((u) => want.test(u)), `a response for ${want}`).toBe(true);
     }
     const notFromWorker = responses.filter((r) => !r.fromServiceWorker()).map((r) => r.url());
@@ -104,8 +116,8 @@ describe('nothing leaves this machine', () => {
       context.on('request', (r) => seen.push(r.url()));
       await page.goto(baseUrl);
       await predicted(page);
-      await page.locator('[data-clip="spin"]').click();
-      await page.waitForSelector('body[data-current-clip="spin"][data-clip-status="ready"]', { state: 'attached' });
+      await page.locator(`[data-clip="${CLIP_2}"]`).click();
+      await page.waitForSelector(`body[data-current-clip="${CLIP_2}"][data-clip-status="ready"]`, { state: 'attached' });
       await page.locator('#predict').click();
       await predicted(page);
       await page.goto(`${baseUrl}embed.html?autoplay=1`);

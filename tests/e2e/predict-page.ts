@@ -1,11 +1,12 @@
-// What the method browser tests share: the predict page opened on the walker's test history, and
-// the waits and inputs they drive it with.
+// What the method browser tests share: the predict page opened on its default test history (the
+// clip index's), and the waits and inputs they drive it with.
 import { readFileSync } from 'node:fs';
 import { writeFile } from 'node:fs/promises';
 import { expect } from 'vitest';
 import type { Page } from 'playwright-core';
 import type { Manifest, ModelEntry } from '../../web/src/contract/types';
 import { openBrowser, type BrowserSession } from './browser';
+import { defaultHistory } from './data';
 import { pixelStats } from './pixels';
 
 export const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
@@ -28,11 +29,11 @@ export async function compose(page: Page, actions: string[]): Promise<void> {
   }
 }
 
-/** A 1400x1000 page on the site, once the default clip (walker_walk_forward, a test clip) is ready. */
+/** A 1400x1000 page on the site, once the default clip (a test clip, data.ts defaultHistory) is ready. */
 export async function openPredictPage(baseUrl: string): Promise<BrowserSession> {
   const session = await openBrowser({ viewport: { width: 1400, height: 1000 } });
   await session.page.goto(baseUrl);
-  await session.page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]',
+  await session.page.waitForSelector(`body[data-current-clip="${defaultHistory().clip.name}"][data-clip-status="ready"]`,
     { state: 'attached', timeout: 60_000 });
   return session;
 }

@@ -3,11 +3,15 @@ import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
+import { defaultHistory, otherClip } from './data';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
 const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
 const manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
+// The history the page opens on, and another clip to switch to (both from the clip index).
+const HOME = defaultHistory();
+const OTHER = otherClip(HOME.clip.name).name;
 
 const predicted = (page: Page) =>
   page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 90_000 });
@@ -26,8 +30,8 @@ describe('predicting in the browser', () => {
 
   it('shows futures on load, from a test clip, without being asked', async () => {
     await predicted(page);
-    expect(await page.evaluate(() => document.body.dataset.currentClip)).toBe('walker_walk_forward');
-    expect(await page.locator('#history-start').inputValue()).toBe('0');
+    expect(await page.evaluate(() => document.body.dataset.currentClip)).toBe(HOME.clip.name);
+    expect(await page.locator('#history-start').inputValue()).toBe(String(HOME.start));
     expect(await page.locator('.history-note').textContent()).toMatch(/test part/);
     expect(await page.locator('.sample-item').count()).toBeGreaterThan(0);
     // The page loaded the model on its own as soon as the manifest was in (PredictController.warm).
@@ -36,7 +40,7 @@ describe('predicting in the browser', () => {
     expect(marks['mf:model-loaded']).toBeLessThanOrEqual(marks['mf:prediction-received']);
   });
 
-  it('the regression baseline predicts from a walker history, shown beside the ground truth', async () => {
+  it('the regression baseline predicts from the default test history, shown beside the ground truth', async () => {
     await page.locator('#model-select').selectOption('regression-gru');
     await page.locator('input[name="layout"][value="side"]').check();
     await page.evaluate(() => { document.body.dataset.predictStatus = 'waiting'; });
@@ -48,11 +52,11 @@ describe('predicting in the browser', () => {
     const horizon = manifest.models.find((m: { id: string }) => m.id === 'regression-gru')
       .controls.find((c: { id: string }) => c.id === 'horizon').default * 30;
     expect(d.predictionLengths).toBe(String(horizon));
-    // the tracks on stage: history, the truth that exists in the clip (37 - 10 frames), one future
+    // the tracks on stage: history, the truth that exists in the clip, one future
     const tracks = await page.evaluate(() => window.motionFutures!.predictor.last!.prediction.frames);
     expect(tracks).toBe(horizon);
     expect(await page.locator('.sample-item').count()).toBe(1);
-    expect(await page.locator('.predict-status').textContent()).toMatch(/Regression GRU.*walker_walk_forward/);
+    expect(await page.locator('.predict-status').textContent()).toMatch(new RegExp(`Regression GRU.*${HOME.clip.name}`));
     await page.evaluate(() => { const p = window.motionFutures!.player; p.pause(); p.seek(25); });
     await settle(page);
     await session.screenshot('predict-regression.png');
@@ -84,8 +88,8 @@ describe('prediction failures stay visible', () => {
       await page.waitForSelector('body[data-predict-status="error"]', { state: 'attached', timeout: 90_000 });
       await expect.poll(() => page.locator('.message-error').first().textContent())
         .toMatch(/models\/regression-gru\.predict\.onnx could not be loaded \(HTTP 404\)/);
-      await page.locator('[data-clip="run"]').click();
-      await page.waitForSelector('body[data-current-clip="run"][data-clip-status="ready"]', { state: 'attached' });
+      await page.locator(`[data-clip="${OTHER}"]`).click();
+      await page.waitForSelector(`body[data-current-clip="${OTHER}"][data-clip-status="ready"]`, { state: 'attached' });
       expect(session.problems.pageErrors).toEqual([]);
     } finally {
       await session.close();
@@ -102,7 +106,7 @@ describe('prediction failures stay visible', () => {
       await page.waitForSelector('body[data-predict-status="unavailable"]', { state: 'attached', timeout: 60_000 });
       await expect.poll(() => page.locator('.message-error').first().textContent())
         .toMatch(/models\/manifest\.json: field models\/0\/hash: is missing/);
-      await page.waitForSelector('body[data-current-clip="walker_walk_forward"][data-clip-status="ready"]', { state: 'attached' });
+      await page.waitForSelector(`body[data-current-clip="${HOME.clip.name}"][data-clip-status="ready"]`, { state: 'attached' });
       expect(session.problems).toEqual(NO_PROBLEMS);
     } finally {
       await session.close();
@@ -117,8 +121,8 @@ describe('prediction failures stay visible', () => {
       await page.goto(baseUrl);
       await page.waitForSelector('body[data-predict-status="error"]', { state: 'attached', timeout: 60_000 });
       await expect.poll(() => page.locator('.message-error').first().textContent()).toMatch(/WebAssembly is not available/);
-      await page.locator('[data-clip="run"]').click();
-      await page.waitForSelector('body[data-current-clip="run"][data-clip-status="ready"]', { state: 'attached' });
+      await page.locator(`[data-clip="${OTHER}"]`).click();
+      await page.waitForSelector(`body[data-current-clip="${OTHER}"][data-clip-status="ready"]`, { state: 'attached' });
       expect(session.problems.pageErrors).toEqual([]);
     } finally {
       await session.close();

@@ -6,6 +6,7 @@ import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import type { ControlSpec, Manifest, ModelEntry } from '../../web/src/contract/types';
 import { openBrowser, type BrowserSession } from './browser';
+import { index, otherClip, testClips } from './data';
 
 const baseUrl = inject('baseUrl');
 const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
@@ -33,7 +34,9 @@ function nonDefault(spec: ControlSpec): string {
   return String(Number(v.toFixed(decimals(step))));
 }
 
-const linkParams = new URLSearchParams({ model: model.id, clip: 'walker_turn_left0', start: '3', seed: '5' });
+// A test clip long enough to start the history at frame 3 (not the page's default, so the link's clip shows).
+const LINK_CLIP = (testClips(model.params.history_frames + 3).find((c) => c.name !== index.default?.clip) ?? testClips(model.params.history_frames + 3)[0]).name;
+const linkParams = new URLSearchParams({ model: model.id, clip: LINK_CLIP, start: '3', seed: '5' });
 for (const c of model.controls) linkParams.set(c.id, nonDefault(c));
 
 const predicted = (page: Page) =>
@@ -68,7 +71,7 @@ describe('permalinks', () => {
     expect(q.get('v')).toBe(version);
     expect(q.get('model')).toBe(model.id);
     expect(q.get('hash')).toBe(model.hash.slice('sha256:'.length, 'sha256:'.length + 12));
-    expect(q.get('clip')).toBe('walker_turn_left0');
+    expect(q.get('clip')).toBe(LINK_CLIP);
     expect(q.get('start')).toBe('3');
     expect(q.get('seed')).toBe('5');
     for (const c of model.controls) expect(q.get(c.id), c.id).toBe(linkParams.get(c.id));
@@ -176,9 +179,10 @@ describe('links that do not fit say so', () => {
     // the address bar no longer names a clip the stage does not show
     expect(new URL(page.url()).searchParams.has('clip')).toBe(false);
     // picking a clip makes the history linkable again
-    await page.locator('[data-clip="run"]').click();
-    await page.waitForSelector('body[data-current-clip="run"][data-clip-status="ready"]', { state: 'attached' });
+    const other = otherClip(LINK_CLIP).name;
+    await page.locator(`[data-clip="${other}"]`).click();
+    await page.waitForSelector(`body[data-current-clip="${other}"][data-clip-status="ready"]`, { state: 'attached' });
     expect(await page.getByTestId('copy-link').getAttribute('data-unlinkable')).toBe('false');
-    expect(new URL(page.url()).searchParams.get('clip')).toBe('run');
+    expect(new URL(page.url()).searchParams.get('clip')).toBe(other);
   });
 });

@@ -4,12 +4,20 @@ import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
+import { index } from './data';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
-// The viewer tests start on walk and leave predicting to tests/e2e/predict.e2e.test.ts.
-const viewerUrl = `${baseUrl}?clip=walk&predict=0`;
-const CLIPS = 20;
+// Clips chosen from the clip index by role and length: a training clip to start on, a test clip to
+// switch to, and another clip to recover on.
+const VIEW = index.clips.find((c) => c.role === 'train' && c.frames >= 30 && c.frames <= 600) ?? index.clips.find((c) => c.frames >= 30)!;
+const TEST = index.clips.find((c) => c.role === 'test' && c.name !== VIEW.name && c.frames >= 12)!;
+const OTHER = index.clips.find((c) => c.name !== VIEW.name && c.name !== TEST.name)!;
+const seconds = (frames: number) => (frames / index.fps).toFixed(2);
+const licence: string | undefined = JSON.parse(readFileSync(new URL(`../../public/clips/${VIEW.file}`, import.meta.url), 'utf8')).source?.license;
+// The viewer tests start on a training clip and leave predicting to tests/e2e/predict.e2e.test.ts.
+const viewerUrl = `${baseUrl}?clip=${VIEW.name}&predict=0`;
+const CLIPS = index.clips.length;
 const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
 
 function frameOf(readout: string | null): number {
@@ -34,22 +42,22 @@ describe('clip viewer', () => {
   });
   afterAll(async () => { await session?.close(); });
 
-  it('lists the clips, test clips first, and selects walk', async () => {
+  it(`lists the clips, test clips first, and selects ${VIEW.name}`, async () => {
     await page.locator('.clip-button').first().waitFor();
     expect(await page.locator('.clip-button').count()).toBe(CLIPS);
     const firstGroup = await page.locator('.clip-group').first().locator('.role-badge').allTextContents();
     expect(new Set(firstGroup)).toEqual(new Set(['test']));
-    await clipReady(page, 'walk');
-    expect(await page.locator('[data-clip="walk"]').getAttribute('aria-current')).toBe('true');
+    await clipReady(page, VIEW.name);
+    expect(await page.locator(`[data-clip="${VIEW.name}"]`).getAttribute('aria-current')).toBe('true');
     const info = page.getByTestId('clip-info');
-    expect(await info.locator('[data-field="name"]').textContent()).toBe('walk');
-    expect(await info.locator('[data-field="fps"]').textContent()).toBe('30');
-    expect(await info.locator('[data-field="licence"]').textContent()).toMatch(/^Licence: .*DeepMimic/);
+    expect(await info.locator('[data-field="name"]').textContent()).toBe(VIEW.name);
+    expect(await info.locator('[data-field="fps"]').textContent()).toBe(String(index.fps));
+    expect(await info.locator('[data-field="licence"]').textContent()).toBe(licence ? `Licence: ${licence}` : 'Licence: not stated');
   });
 
-  it('plays walk: the read-out and the scrubber advance', async () => {
+  it(`plays ${VIEW.name}: the read-out and the scrubber advance`, async () => {
     const t0 = await readout(page);
-    expect(t0).toMatch(/^t = \d+\.\d\d s \/ 1\.27 s \(frame \d+\)$/);
+    expect(t0).toMatch(new RegExp(`^t = \\d+\\.\\d\\d s / ${seconds(VIEW.frames).replace('.', '\\.')} s \\(frame \\d+\\)$`));
     await expect.poll(() => readout(page), { timeout: 30_000 }).not.toBe(t0);
     const s0 = await scrubber(page);
     await expect.poll(() => scrubber(page), { timeout: 30_000 }).not.toBe(s0);
@@ -69,14 +77,14 @@ describe('clip viewer', () => {
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
-  it('switches to the test clip walker_walk_forward and plays it', async () => {
-    await page.locator('[data-clip="walker_walk_forward"]').click();
-    await clipReady(page, 'walker_walk_forward');
-    expect(await page.locator('[data-clip="walker_walk_forward"]').getAttribute('aria-current')).toBe('true');
-    expect(await page.locator('[data-clip="walk"]').getAttribute('aria-current')).toBeNull();
+  it(`switches to the test clip ${TEST.name} and plays it`, async () => {
+    await page.locator(`[data-clip="${TEST.name}"]`).click();
+    await clipReady(page, TEST.name);
+    expect(await page.locator(`[data-clip="${TEST.name}"]`).getAttribute('aria-current')).toBe('true');
+    expect(await page.locator(`[data-clip="${VIEW.name}"]`).getAttribute('aria-current')).toBeNull();
     expect(await page.getByTestId('clip-info').locator('[data-field="split"]').textContent()).toBe('test');
     const t0 = await readout(page);
-    expect(t0).toContain('/ 1.23 s');
+    expect(t0).toContain(`/ ${seconds(TEST.frames)} s`);
     await expect.poll(() => readout(page), { timeout: 30_000 }).not.toBe(t0);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
@@ -90,8 +98,8 @@ describe('clip viewer', () => {
     expect(frameOf(await readout(page))).toBe(paused);
 
     await page.keyboard.press('ArrowRight');
-    expect(frameOf(await readout(page))).toBe((paused + 1) % 37);
-    expect(Number(await scrubber(page))).toBe((paused + 1) % 37);
+    expect(frameOf(await readout(page))).toBe((paused + 1) % TEST.frames);
+    expect(Number(await scrubber(page))).toBe((paused + 1) % TEST.frames);
     await page.keyboard.press('Home');
     expect(frameOf(await readout(page))).toBe(0);
     await page.keyboard.press('Shift+ArrowRight');
@@ -99,7 +107,7 @@ describe('clip viewer', () => {
     await page.keyboard.press('ArrowLeft');
     expect(frameOf(await readout(page))).toBe(9);
     await page.keyboard.press('End');
-    expect(frameOf(await readout(page))).toBe(36);
+    expect(frameOf(await readout(page))).toBe(TEST.frames - 1);
 
     await page.keyboard.press(']');
     expect(await page.getByLabel('Playback speed').inputValue()).toBe('1.25');
@@ -125,7 +133,7 @@ describe('many tracks', () => {
     try {
       const { page } = session;
       await page.goto(viewerUrl);
-      await clipReady(page, 'walk');
+      await clipReady(page, VIEW.name);
       // Stand-in predictions cut from the clip itself: the viewer does not care where tracks come from.
       await page.evaluate(() => {
         const app = window.motionFutures!;
@@ -175,7 +183,7 @@ describe('phone width, dark scheme', () => {
     try {
       const { page } = session;
       await page.goto(viewerUrl);
-      await clipReady(page, 'walk');
+      await clipReady(page, VIEW.name);
       await page.getByTestId('play').click();
       const stage = (await page.locator('#viewer').boundingBox())!;
       const panel = (await page.locator('#panel').boundingBox())!;
@@ -193,23 +201,23 @@ describe('phone width, dark scheme', () => {
 });
 
 describe('failures stay visible', () => {
-  it('an invalid walk.json names the file in the banner and the page stays usable', async () => {
+  it(`an invalid ${VIEW.file} names the file in the banner and the page stays usable`, async () => {
     const session = await openBrowser();
     try {
       const { page } = session;
-      const text = readFileSync(new URL('../../public/clips/walk.json', import.meta.url), 'utf8');
+      const text = readFileSync(new URL(`../../public/clips/${VIEW.file}`, import.meta.url), 'utf8');
       const at = text.indexOf('"positions"');
       const broken = text.slice(0, at) + text.slice(at).replace(/-?\d+(\.\d+)?([eE][-+]?\d+)?/, 'NaN');
-      await page.route('**/clips/walk.json', (route) => route.fulfill({ status: 200, contentType: 'application/json', body: broken }));
+      await page.route(`**/clips/${VIEW.file}`, (route) => route.fulfill({ status: 200, contentType: 'application/json', body: broken }));
       await page.goto(viewerUrl);
-      await page.waitForSelector('body[data-current-clip="walk"][data-clip-status="error"]', { state: 'attached', timeout: 60_000 });
+      await page.waitForSelector(`body[data-current-clip="${VIEW.name}"][data-clip-status="error"]`, { state: 'attached', timeout: 60_000 });
       const banner = page.locator('.message-error');
-      await expect.poll(() => banner.first().textContent()).toMatch(/walk\.json.*not valid JSON/);
+      await expect.poll(() => banner.first().textContent()).toMatch(new RegExp(`${VIEW.file.replace(/\./g, '\\.')}.*not valid JSON`));
       expect(await page.locator('.clip-button').count()).toBe(CLIPS);
       await session.screenshot('viewer-invalid-clip.png');
 
-      await page.locator('[data-clip="run"]').click();
-      await clipReady(page, 'run');
+      await page.locator(`[data-clip="${OTHER.name}"]`).click();
+      await clipReady(page, OTHER.name);
       expect(await banner.count()).toBe(0); // the clip's error is cleared by a good clip
       expect(session.problems).toEqual(NO_PROBLEMS);
     } finally {
@@ -229,7 +237,7 @@ describe('failures stay visible', () => {
         } as typeof original;
       });
       await page.goto(viewerUrl);
-      await clipReady(page, 'walk');
+      await clipReady(page, VIEW.name);
       await expect.poll(() => page.locator('.viewer-notice').textContent()).toMatch(/WebGL is not available/);
       expect(await page.locator('.viewer-notice').isVisible()).toBe(true);
       expect(await page.locator('.clip-button').count()).toBe(CLIPS);

@@ -11,7 +11,10 @@ import { compose, failed, NO_PROBLEMS, openPredictPage, predicted, servedModel, 
 const baseUrl = inject('baseUrl');
 const entry = servedModel('wat-rnn');
 const params = entry.params as unknown as WatParams;
-const SEQUENCE = ['walk', 'punch', 'jump'];
+/** Walk, punch, jump when the model knows those actions, else its first three (the manifest's). */
+const WANTED = ['walk', 'punch', 'jump'];
+const SEQUENCE = WANTED.every((a) => params.actions.includes(a)) ? WANTED : params.actions.slice(0, 3);
+const pretty = (a: string) => a.replace(/_/g, ' ');
 
 
 describe('WAT (RNN) in the browser', () => {
@@ -24,13 +27,13 @@ describe('WAT (RNN) in the browser', () => {
   });
   afterAll(async () => { await session?.close(); });
 
-  it('predicts K = 10 futures for walk -> punch -> jump from a test-split history', async () => {
+  it(`predicts K = 10 futures for ${SEQUENCE.join(' -> ')} from a test-split history`, async () => {
     await page.locator('#model-select').selectOption('wat-rnn');
-    // the default history is on the walker's test part
+    // the default history is on a test part
     expect(await page.locator('.history-note').textContent()).toMatch(/test part/);
     await page.locator('#control-k').fill('10');
     await compose(page, SEQUENCE);
-    expect(await page.locator('.action-chip').allTextContents()).toEqual(['1. walk×', '2. punch×', '3. jump×']);
+    expect(await page.locator('.action-chip').allTextContents()).toEqual(SEQUENCE.map((a, i) => `${i + 1}. ${pretty(a)}×`));
     await waiting(page);
     await page.locator('#predict').click();
     await predicted(page);
@@ -56,7 +59,7 @@ describe('WAT (RNN) in the browser', () => {
     expect(await page.locator('.sample-item').count()).toBe(10);
     const rows = await page.locator('.sample-item').first().locator('.segment-list li').allTextContents();
     expect(rows).toHaveLength(3);
-    rows.forEach((r, j) => expect(r).toMatch(new RegExp(`^${SEQUENCE[j]} · [0-9.]+ s · smoothness [0-9.]+e[-+][0-9]+ m²`)));
+    rows.forEach((r, j) => expect(r).toMatch(new RegExp(`^${pretty(SEQUENCE[j])} · [0-9.]+ s · smoothness [0-9.]+e[-+][0-9]+ m²`)));
     const flaggedRows = samples.reduce((c, s) => c + s.segments.filter((g) => g.flagged).length, 0);
     expect(await page.locator('.segment-flagged').count()).toBe(flaggedRows);
 
@@ -86,7 +89,7 @@ describe('WAT (RNN) in the browser', () => {
   });
 
   it('K outside 1-50 is named, not predicted', async () => {
-    await compose(page, ['walk']);
+    await compose(page, [SEQUENCE[0]]);
     await page.locator('#control-k').fill('60');
     await waiting(page);
     await page.locator('#predict').click();

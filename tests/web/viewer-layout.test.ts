@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { CELL_SPACING, layoutTracks, ROW_SPACING } from '../../web/src/viewer/layout';
-import { hslToRgb, sideOf, tintColour, type Side } from '../../web/src/viewer/palette';
+import { CELL_SPACING, chooseColumns, layoutTracks, ROW_SPACING } from '../../web/src/viewer/layout';
+import { hslToRgb, identityColour, identityCss, identityHex, sideOf, tintColour, type Side } from '../../web/src/viewer/palette';
 import { poseInto, timelineLength, trackPose, type TrackRole } from '../../web/src/viewer/tracks';
 
 describe('track poses on the shared timeline', () => {
@@ -63,6 +63,34 @@ describe('layout', () => {
     expect(l.placements[l.cols].z - l.placements[0].z).toBeCloseTo(ROW_SPACING);
   });
 
+  it('lays the grid out in the figures\' own frame: columns across their heading, rows along it', () => {
+    const five = Array.from({ length: 6 }, (_, i) => (i === 0 ? { role: 'truth' as const } : { role: 'prediction' as const, sample: i - 1 }));
+    const facingZ = layoutTracks(five, 'side', { heading: 0 });
+    const facingX = layoutTracks(five, 'side', { heading: Math.PI / 2 });
+    // turning the heading by 90 degrees turns every cell's offset with it
+    facingZ.placements.forEach((p, i) => {
+      const q = facingX.placements[i];
+      expect(q.x).toBeCloseTo(p.z, 9);
+      expect(q.z).toBeCloseTo(-p.x, 9);
+    });
+    // cells grow to the room the figures need
+    const wide = layoutTracks(five, 'side', { cellWidth: 3, cellDepth: 4 });
+    expect(wide.spacing).toBe(3);
+    expect(wide.rowSpacing).toBe(4);
+    const own = wide.placements.filter((p) => !p.shared);
+    expect(Math.abs(own[1].x - own[0].x)).toBeCloseTo(3);
+  });
+
+  it('chooses the columns that let the grid fill a wide or a tall view', () => {
+    expect(chooseColumns(11, 1.2, 2, 1.6)).toBeGreaterThan(chooseColumns(11, 1.2, 2, 0.6));
+    expect(chooseColumns(1, 1, 1, 1)).toBe(1);
+    for (let cells = 1; cells <= 51; cells += 5) {
+      const cols = chooseColumns(cells, CELL_SPACING, ROW_SPACING, 1.6);
+      expect(cols).toBeGreaterThanOrEqual(1);
+      expect(cols).toBeLessThanOrEqual(cells);
+    }
+  });
+
   it('a lone history track gets a cell of its own', () => {
     expect(layoutTracks([{ role: 'history' }], 'side').placements).toEqual([{ track: 0, cell: 0, x: 0, z: 0, shared: false }]);
   });
@@ -96,6 +124,22 @@ describe('palette', () => {
       const right = hue(tintColour('right', t));
       expect(Math.abs(left - right), JSON.stringify(t)).toBeGreaterThan(60);
     }
+  });
+
+  it('gives every figure one identity colour, on its torso and head, that CSS and WebGL show alike', () => {
+    const roles: { role: TrackRole; sample?: number }[] = [{ role: 'history' }, { role: 'truth' }, ...Array.from({ length: 50 }, (_, sample) => ({ role: 'prediction' as const, sample }))];
+    const hexes = roles.map((t) => identityHex(t.role, t.sample));
+    expect(new Set(hexes.slice(0, 12)).size).toBe(12); // history, truth and the first ten samples all differ
+    for (const t of roles) {
+      // the torso keeps the identity colour whether the track plays, ended or is selected
+      for (const tint of [t, { ...t, ended: true }, { ...t, selected: true }]) expect(tintColour('mid', tint)).toEqual(identityColour(t.role, t.sample));
+      const [r, g, b] = identityColour(t.role, t.sample).map((v) => Math.round(v * 255));
+      expect(identityCss(t.role, t.sample)).toBe(`rgb(${r} ${g} ${b})`);
+      // whole sRGB bytes, so a swatch and the GPU's instance colour read back the same '#rrggbb'
+      expect(identityColour(t.role, t.sample).every((v) => Math.abs(v * 255 - Math.round(v * 255)) < 1e-9)).toBe(true);
+    }
+    // a sample stepping back for a selected one is muted
+    expect(tintColour('mid', { role: 'prediction', sample: 1, muted: true })).not.toEqual(identityColour('prediction', 1));
   });
 
   it('dims an ended track and mutes unselected samples', () => {

@@ -1,7 +1,7 @@
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
 import { Player, type FrameClock } from '../../web/src/ui/player';
-import { advance, formatTime, frameAt, MAX_TICK_SECONDS, nextSpeed, SPEEDS, stepFrame } from '../../web/src/ui/timeline';
+import { advance, formatTime, frameAt, MAX_TICK_SECONDS, nextSpeed, phaseLabel, SPEEDS, stepFrame } from '../../web/src/ui/timeline';
 
 describe('timeline arithmetic', () => {
   it('advances by wall clock x speed x fps', () => {
@@ -42,6 +42,16 @@ describe('timeline arithmetic', () => {
   it('formats the read-out', () => {
     expect(formatTime(37, 120, 30)).toBe('t = 1.23 s / 4.00 s (frame 37)');
     expect(formatTime(0, 38, 30)).toBe('t = 0.00 s / 1.27 s (frame 0)');
+  });
+
+  it('counts t from the first predicted frame when there is a history: 0 there, negative before', () => {
+    expect(formatTime(10, 100, 30, 10)).toBe('t = 0.00 s / 3.00 s (frame 10)');
+    expect(formatTime(1, 100, 30, 10)).toBe('t = \u22120.30 s / 3.00 s (frame 1)');
+    expect(formatTime(34, 100, 30, 10)).toBe('t = +0.80 s / 3.00 s (frame 34)');
+    expect(phaseLabel(3, 30, 10)).toBe('history');
+    expect(phaseLabel(10, 30, 10)).toBe('0.0 s');
+    expect(phaseLabel(34, 30, 10)).toBe('+0.8 s');
+    expect(phaseLabel(45, 30, 0)).toBe('1.5 s'); // a clip alone: its own time
   });
 
   it('walks the speed ladder between 0.25x and 2x', () => {

@@ -24,7 +24,7 @@ export class MotionFuturesElement extends HTMLElement {
         link: params,
         onLink: page ? (search) => keepPageUrl(search) : undefined,
       });
-      if (page) registerServiceWorker(this.app.ready);
+      if (page) registerServiceWorker(this.app.ready, (s) => this.app?.offline(s));
     } catch (err) {
       const box = document.createElement('p');
       box.setAttribute('role', 'alert');

@@ -33,17 +33,19 @@ export function mountWidget(host: HTMLElement, options: WidgetOptions): App {
   root.adoptedStyleSheets = styleSheets();
   const messages = el('div', { id: 'messages', class: 'messages', role: 'region', 'aria-label': 'Messages' });
   const viewer = el('div', { id: 'viewer', class: 'viewer' }, el('p', { class: 'viewer-notice' }, 'Loading the viewer…'));
+  const notice = el('div', { class: 'stage-notice' });
+  const toolbar = el('div', { class: 'stage-toolbar-slot' });
   const playback = el('div', { id: 'playback', class: 'playback' });
+  const shownLine = el('div', { class: 'stage-status-slot' });
   const bar = el('div', { class: 'mini-bar' });
   const panel = el('aside', { id: 'panel', class: 'panel', 'aria-label': 'Controls' });
-  const legend = el('p', { class: 'legend', 'aria-label': 'Colour legend' },
-    el('span', { class: 'swatch swatch-left', 'aria-hidden': 'true' }), 'left limbs',
-    el('span', { class: 'swatch swatch-right', 'aria-hidden': 'true' }), 'right limbs',
-    el('span', { class: 'hint' }, 'Space play/pause · ←/→ frame · [ ] speed · L layout · P predict · 1–9 sample · S picture · R record'));
+  const hint = el('p', { class: 'hint muted' }, 'Space play/pause · ←/→ frame · [ ] speed · L layout · P predict · 1–9 sample · click a figure to select it · S picture · R record');
+  // The stage frame holds the viewer and what lies over it (messages, the out-of-range notice), so
+  // neither ever moves or resizes the stage.
   root.replaceChildren(el('div', { class: 'mf-widget', 'data-controls': options.view.controls },
-    messages,
     el('div', { class: 'app' },
-      el('section', { class: 'stage-area', 'aria-label': '3D viewer' }, viewer, playback, bar, legend),
+      el('section', { class: 'stage-area', 'aria-label': '3D viewer' },
+        toolbar, el('div', { class: 'stage-frame' }, viewer, messages, notice), playback, shownLine, bar, hint),
       panel)));
 
   // Keys act on the focused instance: make the host focusable, and focus it on a click anywhere
@@ -60,7 +62,7 @@ export function mountWidget(host: HTMLElement, options: WidgetOptions): App {
       if (value === undefined) delete target.dataset[key]; else target.dataset[key] = value;
     }
   };
-  return startApp({ host, messages, viewer, playback, panel, bar }, {
+  return startApp({ host, messages, viewer, playback, panel, bar, toolbar, notice, status: shownLine }, {
     siteRoot: SITE_ROOT, view: options.view, link: options.link, status, onLink: options.onLink,
   });
 }

@@ -154,6 +154,78 @@ export function findings(results: Results): Finding[] {
   return out;
 }
 
+/** Statements that repeat per model, merged into one per table: the subject, and the text around it. */
+const MERGEABLE: { re: RegExp; lead: (m: RegExpExecArray) => string }[] = [
+  { re: /^(.+?) (comes closer to|comes no closer to) the captured future than standing still: (best-of-\d+ MPJPE (?:at|over) [^ ]+ s) (.+?) against (.+?) for zero-velocity \((.+)\)\.$/,
+    lead: (m) => `${m[2] === 'comes closer to' ? 'Closer to' : 'No closer to'} the captured future than standing still (${m[3]}; zero-velocity ${m[5]}; ${m[6]})` },
+  { re: /^(.+?) (draws different futures for one history): diversity (.+?) \((.+)\)\.$/,
+    lead: (m) => `Different futures for one history (diversity; ${m[4]})` },
+  { re: /^(.+?) (draws a single future): diversity 0 \((.+)\)\.$/, lead: (m) => `A single future (diversity 0; ${m[3]})` },
+  { re: /^(.+?)'s futures are (seldom recognised as the history's action): MOAC accuracy (.+?) against (.+?) for the captured future \((.+)\)\.$/,
+    lead: (m) => `Futures seldom recognised as the history's action (MOAC accuracy; captured future ${m[4]}; ${m[5]})` },
+];
+
+/**
+ * The findings with statements that repeat per model merged: one bullet per kind of statement and
+ * table ("Different futures for one history (diversity; test split): WAT (RNN) 0.373 m, …"), in the
+ * order the first of each appeared. Statements of one model stay as they are.
+ */
+export function mergeFindings(list: Finding[]): Finding[] {
+  const out: Finding[] = [];
+  const groups = new Map<string, { at: number; verdict: Verdict; lead: string; items: string[]; sources: Set<string> }>();
+  for (const f of list) {
+    let merged = false;
+    for (const [i, { re, lead }] of MERGEABLE.entries()) {
+      const m = re.exec(f.text);
+      if (!m) continue;
+      const value = i === 0 ? m[4] : i === 1 ? m[3] : i === 2 ? null : m[3];
+      const key = `${f.verdict}|${i}|${lead(m)}`;
+      let g = groups.get(key);
+      if (!g) {
+        g = { at: out.length, verdict: f.verdict, lead: lead(m), items: [], sources: new Set() };
+        groups.set(key, g);
+        out.push({ verdict: f.verdict, text: '', source: '' });
+      }
+      g.items.push(value ? `${m[1]} ${value}` : m[1]);
+      g.sources.add(f.source);
+      merged = true;
+      break;
+    }
+    if (!merged) out.push(f);
+  }
+  for (const g of groups.values()) {
+    out[g.at] = { verdict: g.verdict, text: `${g.lead}: ${g.items.join(', ')}.`, source: [...g.sources].join('; ') };
+  }
+  return out;
+}
+
+/**
+ * The card's summary, five lines at most: results.json's own `summary` when the evaluation writes
+ * one, else lines drawn from the same findings the card lists (what was served and measured, how
+ * many models beat standing still, which draw different futures, how the paper claims fare).
+ */
+export function cardSummary(results: Results | null, manifest: Manifest | null, index: ClipIndex): string[] {
+  if (results?.summary?.length) return results.summary.slice(0, 5);
+  const d = dataSummary(index);
+  const lines = [`Trained and tested on ${d.clips} motion clips (${d.seconds.toFixed(0)} s, ${d.actions} actions); `
+    + `${d.testSeconds.toFixed(0)} s are held out for testing.`];
+  if (manifest) lines.push(`${manifest.models.length} models are served: ${manifest.models.map((m) => m.label).join('; ')}.`);
+  if (!results) return [...lines, 'The measured numbers (results.json) could not be loaded.'];
+  const all = findings(results);
+  const closer = all.filter((f) => / comes closer to the captured future/.test(f.text));
+  const notCloser = all.filter((f) => / comes no closer to the captured future/.test(f.text));
+  const name = (f: Finding) => f.text.replace(/ comes (no )?closer to.*$/, '');
+  if (closer.length || notCloser.length) {
+    lines.push(`Closer to the captured future than standing still: ${[...new Set(closer.map(name))].join(', ') || 'none'}; `
+      + `not closer: ${[...new Set(notCloser.map(name))].join(', ') || 'none'}.`);
+  }
+  const diverse = [...new Set(all.filter((f) => / draws different futures/.test(f.text)).map((f) => f.text.replace(/ draws different futures.*$/, '')))];
+  if (diverse.length) lines.push(`${diverse.length} of the measured rows draw different futures for one history; the baselines draw one.`);
+  const count = (s: string) => results.claims.filter((c) => c.status === s).length;
+  lines.push(`Of ${results.claims.length} paper claims tested, ${count('holds')} hold here, ${count('fails')} fail and ${results.claims.length - count('holds') - count('fails')} are inconclusive.`);
+  return lines.slice(0, 5);
+}
+
 function rowLabel(results: Results, table: string, row: string): string {
   return results.tables.find((x) => x.id === table)?.rows.find((r) => r.id === row)?.label ?? row;
 }

@@ -10,7 +10,7 @@ import { parseResults, type Results } from '../results/data';
 import { cell } from '../results/format';
 import { SITE_VERSION } from '../share/version';
 import { el } from '../ui/dom';
-import { cardColumns, classifierCaveats, dataSummary, failureModes, findings, PAPERS_BIBTEX, projectBibtex, staleModels, type Finding, type Verdict } from './card';
+import { cardColumns, cardSummary, classifierCaveats, dataSummary, failureModes, findings, mergeFindings, PAPERS_BIBTEX, projectBibtex, staleModels, type Finding, type Verdict } from './card';
 
 const pretty = (s: string) => s.replace(/_/g, ' ');
 const PAPERS: Record<string, string> = {
@@ -31,15 +31,21 @@ function dataSection(index: ClipIndex): HTMLElement {
     el('th', { scope: 'row' }, pretty(c.name)), el('td', {}, pretty(c.action)), el('td', { class: 'num' }, String(c.frames)),
     el('td', { class: 'num' }, (c.frames / index.fps).toFixed(2)),
     el('td', {}, c.role === 'test' ? 'test' : c.test.length ? `train, test from frame ${c.test[0][0]}` : 'train')));
-  const testOnly = Object.entries(d.testOnly).map(([a, names]) => `${names.length} clips of ${pretty(a)}`).join(', ');
+  const testOnly = Object.entries(d.testOnly).map(([a, names]) => `${names.length} of ${pretty(a)}`).join(', ');
+  const people = (role: (r: string) => boolean) => [...new Set(index.clips.filter((c) => c.subject !== undefined && role(c.role)).map((c) => String(c.subject)))];
+  const testPeople = people((r) => r === 'test');
+  const trainPeople = people((r) => r !== 'test');
+  const datasets = [...new Set(index.clips.map((c) => c.dataset).filter((x): x is string => Boolean(x)))];
   return section('data', 'The data',
     el('p', {}, `${d.clips} motion clips, ${d.seconds.toFixed(1)} s in all at ${d.fps} frames per second, of ${d.actions} actions; `,
-      `${d.trainSeconds.toFixed(1)} s are for training and ${d.testSeconds.toFixed(1)} s for testing. Each action is one take by one performer `,
-      `(the DeepMimic reference motions); the test-only clips${testOnly ? ` (${testOnly})` : ''} are a second take of walking, and two training takes `,
-      'keep their later frames for testing. That is very little data: the models learn these takes, not human motion in general.'),
-    el('p', {}, 'Source and licence: DeepMimic (Peng et al., SIGGRAPH 2018) motion data, MIT licence, as shipped in the pybullet wheel (zlib licence); ',
-      'converted to 18 joint positions in metres, y up, with the horizontal root translation removed. ',
-      el('a', { href: './DATA_NOTICE.md' }, 'DATA_NOTICE.md'), ' has the full notice; the models are this project\'s, under its MIT licence.'),
+      `${d.trainSeconds.toFixed(1)} s are for training and ${d.testSeconds.toFixed(1)} s for testing`,
+      testPeople.length ? `: the split keeps each person on one side, and the test clips are by ${testPeople.length} people no model saw `
+        + `(${trainPeople.length} others are trained on).` : '.',
+      testOnly ? ` Test clips per action: ${testOnly}.` : '',
+      ' Positions are 18 joints in metres, y up, in the world frame: the root travels over the floor.'),
+    el('details', {}, el('summary', {}, 'How the clips are split'), el('ul', {}, ...index.split_rules.map((r) => el('li', {}, r)))),
+    el('p', {}, `Sources: ${datasets.length ? datasets.join('; ') : 'not stated'}. `,
+      el('a', { href: './DATA_NOTICE.md' }, 'DATA_NOTICE.md'), ' has every source with its licence; the models are this project\'s, under its MIT licence.'),
     el('details', {}, el('summary', {}, `All ${d.clips} clips and their split`),
       el('div', { class: 'table-wrap', tabindex: 0, role: 'region', 'aria-label': 'Clips' }, el('table', {},
         el('caption', {}, 'Clips, their length and their part of the split'),
@@ -75,7 +81,7 @@ function resultsSection(results: Results | null, problem: string | null, manifes
     return section('measured', 'What the models can and cannot do',
       el('p', { class: 'error', role: 'alert' }, `The measured numbers (results.json) could not be loaded: ${problem}`));
   }
-  const all = findings(results);
+  const all = mergeFindings(findings(results));
   const stale = manifest ? staleModels(results, manifest) : [];
   const groups = VERDICTS.map(([v, title]) => {
     const list = all.filter((f) => f.verdict === v);
@@ -102,9 +108,9 @@ function resultsSection(results: Results | null, problem: string | null, manifes
     ...groups,
     el('h3', {}, 'The recognition numbers rest on these classifiers'),
     el('ul', {}, ...classifierCaveats(results).map((c) => el('li', {}, c))),
-    el('h3', {}, 'Selected columns'),
-    el('p', { class: 'muted' }, '↓ lower is better, ↑ higher is better. MPJPE best of K: the sample closest to the captured future.'),
-    ...tables);
+    el('details', { class: 'card-tables' }, el('summary', {}, el('h3', { class: 'inline-heading' }, `Selected columns (${tables.length} tables)`)),
+      el('p', { class: 'muted' }, '↓ lower is better, ↑ higher is better. MPJPE best of K: the sample closest to the captured future.'),
+      ...tables));
 }
 
 function failureSection(results: Results | null, manifest: Manifest | null, index: ClipIndex): HTMLElement {
@@ -149,6 +155,9 @@ async function main(): Promise<void> {
     }).catch((err: Error) => ({ r: null, problem: err.message })),
   ]);
   host.replaceChildren(
+    el('section', { class: 'card-summary', 'aria-labelledby': 'summary-title', 'data-testid': 'card-summary' },
+      el('h2', { id: 'summary-title' }, 'In short'),
+      el('ul', {}, ...cardSummary(results.r, manifest.m, index).map((line) => el('li', {}, line)))),
     el('p', { class: 'lede' }, 'What the predictors on this site were trained on, what they can and cannot do, where they fail, and how to cite them.'),
     el('nav', { 'aria-label': 'On this page', class: 'toc' }, el('ul', {},
       ...[['data', 'Data'], ['models', 'Models'], ['measured', 'Can and cannot'], ['failures', 'Failure modes'], ['cite', 'Cite']]

@@ -78,6 +78,8 @@ export interface Results {
   context_plot: string[];
   length_plot: string | null;
   seconds: number;
+  /** The model card's short summary (at most five lines), when the evaluation writes one. */
+  summary?: string[];
 }
 
 export class ResultsError extends Error {}
@@ -95,6 +97,7 @@ export function parseResults(doc: unknown): Results {
   for (const key of ['tables', 'claims', 'sanity', 'skipped'] as const) need(Array.isArray(r[key]), `field ${key} must be a list`);
   need(typeof r.classifiers === 'object' && r.classifiers !== null, 'field classifiers is missing');
   need(typeof r.columns === 'object' && r.columns !== null, 'field columns is missing');
+  need(r.summary === undefined || (Array.isArray(r.summary) && r.summary.every((l) => typeof l === 'string')), 'field summary must be a list of strings');
   r.tables!.forEach((t, i) => {
     need(typeof t.id === 'string' && Array.isArray(t.rows) && Array.isArray(t.columns), `table ${i} lacks id, rows or columns`);
     for (const c of t.columns) need(c in r.columns!, `table ${t.id} has unknown column ${c}`);

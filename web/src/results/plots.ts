@@ -13,7 +13,10 @@ export function markClass(row: Row, index: number): string {
 export function contextPlot(table: Table): SVGSVGElement | null {
   const rows = table.rows.filter((r) => !r.skipped && r.values?.acc_pose && r.values?.div);
   if (rows.length === 0) return null;
-  const W = 620, H = 340, m = { l: 64, r: 190, t: 16, b: 48 };
+  // The legend sits below the axes in two columns of full labels (a side legend cut long labels off).
+  const legendRows = Math.ceil(rows.length / 2);
+  const LEGEND_LINE = 17;
+  const W = 620, plotH = 300, H = plotH + 14 + legendRows * LEGEND_LINE, m = { l: 64, r: 16, t: 16, b: 48 + 14 + legendRows * LEGEND_LINE };
   const xs = rows.map((r) => r.values!.acc_pose), ys = rows.map((r) => r.values!.div);
   const [x0, x1] = extent(xs), [, y1] = extent(ys);
   const x = linearScale(Math.max(0, x0), Math.min(100, Math.max(x1, x0 + 5)), m.l, W - m.r);
@@ -32,11 +35,12 @@ export function contextPlot(table: Table): SVGSVGElement | null {
       svg('circle', { cx, cy, r: 5 }, svg('title', {}, `${r.label}: accuracy ${fmt(r.values!.acc_pose.mean, '%')} %, diversity ${fmt(r.values!.div.mean)} m`)),
     );
     plot.append(g);
-    // Legend on the right instead of labels at the points, which overlap when rows coincide.
-    const ly = m.t + 14 + i * 18;
+    // Legend instead of labels at the points, which overlap when rows coincide.
+    const lx = m.l + (i % 2) * ((W - m.l - m.r) / 2);
+    const ly = plotH + 18 + Math.floor(i / 2) * LEGEND_LINE;
     plot.append(svg('g', { class: `legend ${markClass(r, i)}` },
-      svg('circle', { cx: W - m.r + 16, cy: ly - 4, r: 4 }),
-      svg('text', { x: W - m.r + 26, y: ly, class: 'legend-text' }, r.label.length > 26 ? `${r.label.slice(0, 25)}…` : r.label)));
+      svg('circle', { cx: lx + 6, cy: ly - 4, r: 4 }),
+      svg('text', { x: lx + 16, y: ly, class: 'legend-text' }, r.label)));
   });
   return plot;
 }
@@ -53,7 +57,7 @@ function axes(plot: SVGSVGElement, x: ReturnType<typeof linearScale>, y: ReturnT
     g.append(svg('line', { x1: m.l - 4, x2: m.l, y1: y(t), y2: y(t), class: 'tick' }));
     g.append(svg('text', { x: m.l - 6, y: y(t) + 4, 'text-anchor': 'end', class: 'tick-label' }, fmt(t)));
   }
-  g.append(svg('text', { x: (m.l + W - m.r) / 2, y: H - 8, 'text-anchor': 'middle', class: 'axis-label' }, xLabel));
+  g.append(svg('text', { x: (m.l + W - m.r) / 2, y: H - m.b + 36, 'text-anchor': 'middle', class: 'axis-label' }, xLabel));
   g.append(svg('text', { x: 14, y: (m.t + H - m.b) / 2, 'text-anchor': 'middle', class: 'axis-label',
     transform: `rotate(-90 14 ${(m.t + H - m.b) / 2})` }, yLabel));
   plot.append(g);

@@ -1,7 +1,7 @@
 // One motion-futures instance: wires viewer, player, panels, keyboard and sharing into the parts
 // a widget gives it (web/src/embed/widget.ts). The main page, embed.html and every
 // <motion-futures> on a project page run this same code.
-import type { Manifest } from '../contract/types';
+import type { Manifest, ModelEntry } from '../contract/types';
 import { sharedClient, sharedManifest, newViewId } from '../embed/shared';
 import { EMBED_SCRIPT } from '../embed/site';
 import type { Motion } from '../motion/clip';
@@ -28,12 +28,13 @@ import { addSection } from './panel';
 import { mountPlaybackBar } from './playback-bar';
 import { Player } from './player';
 import { PredictController } from './predict-controller';
-import { mountViewPanel } from './view-panel';
+import { seconds } from './prediction-panel';
 import { shownFromPrediction } from '../export/shown';
 import { mountExportPanel } from './export-panel';
 import { mountImportPanel } from './import-panel';
 import { mountCapturePanel } from './capture';
 import { mountViewSummary } from './view-summary';
+import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar } from './stage-parts';
 
 /** How an instance looks and starts, apart from the prediction state. */
 export interface ViewOptions {
@@ -41,7 +42,7 @@ export interface ViewOptions {
   controls: 'full' | 'minimal';
   /** Play the clip and the futures as soon as they are in. */
   autoplay: boolean;
-  /** Predict once the clip and the manifest are in. */
+  /** Predict once the clip and the manifest are in (and again on every change); false: wait to be asked. */
   autoPredict: boolean;
   /** The instance is the whole page: reads and keeps the page URL, takes unfocused keys, catches uncaught errors. */
   page: boolean;
@@ -51,12 +52,19 @@ export interface ViewOptions {
 export interface AppParts {
   /** The instance root: keys bind here, focus lands here. */
   host: HTMLElement;
+  /** Messages, laid over the top of the stage. */
   messages: HTMLElement;
   viewer: HTMLElement;
   playback: HTMLElement;
   panel: HTMLElement;
   /** The one-line bar of the minimal controls. */
   bar: HTMLElement;
+  /** The line above the stage: legend, layout, reset view, offline state. */
+  toolbar: HTMLElement;
+  /** The out-of-range notice, laid over the bottom of the stage. */
+  notice: HTMLElement;
+  /** The line below the stage that names what is shown. */
+  status: HTMLElement;
 }
 
 export interface AppOptions {
@@ -67,6 +75,14 @@ export interface AppOptions {
   status: StatusSink;
   /** Called with the state's URL query whenever it changes (null when it cannot be linked). */
   onLink?(search: string | null): void;
+}
+
+/** The offline state of a page that registers the service worker (web/src/embed/offline.ts). */
+export interface OfflineState {
+  state: 'saving' | 'ready' | 'failed';
+  /** Bytes the precache holds, once ready. */
+  bytes?: number;
+  files?: number;
 }
 
 export interface App {
@@ -90,10 +106,44 @@ export interface App {
    * a history cannot be linked. Picking a clip in the list makes the source a clip again.
    */
   showMotion(m: Motion | null, source: HistorySource): void;
+  /** Show the offline state (the page's service worker reports it). */
+  offline(s: OfflineState): void;
 }
 
-/** The history clip shown first: a test clip, so the first futures come from unseen motion. */
+/** The history clip shown first when the clip index names no default: a test clip, so the first
+ *  futures come from unseen motion. */
 export const DEFAULT_CLIP = 'walker_walk_forward';
+/** K of the first view: few enough that side by side each sample stays readable. */
+export const FIRST_VIEW_K = 5;
+
+/** The model the page opens on: WAT (action-conditioned, stochastic, variable length), else the first
+ *  model that draws K samples, else the first one. */
+export function stageModel(manifest: Manifest): ModelEntry {
+  return manifest.models.find((m) => m.method === 'wat')
+    ?? manifest.models.find((m) => m.controls.some((c) => c.id === 'k'))
+    ?? manifest.models[0];
+}
+
+/**
+ * What a link without a model opens on (the first view, and an embed without a model): the stage's
+ * model with K = FIRST_VIEW_K (within the control's range) unless the link sets K. A link that names
+ * a model keeps the manifest's defaults.
+ */
+export function withStageDefaults(link: [string, string][], manifest: Manifest): [string, string][] {
+  if (!manifest.models.length || link.some(([k]) => k === 'model')) return link;
+  const entry = stageModel(manifest);
+  const out: [string, string][] = [['model', entry.id], ...link];
+  const k = entry.controls.find((c) => c.id === 'k');
+  if (k && !link.some(([name]) => name === 'k')) {
+    out.push(['k', String(Math.min(k.max ?? FIRST_VIEW_K, Math.max(k.min ?? 1, FIRST_VIEW_K)))]);
+  }
+  return out;
+}
+
+/** The layout a prediction of K samples opens in (until the user picks one): apart beyond 3. */
+export function defaultLayout(k: number): LayoutMode {
+  return k > 3 ? 'side' : 'overlay';
+}
 
 export function clipTrack(m: Motion): Track {
   return { id: `clip:${m.name}`, role: 'clip', positions: m.positions, frames: m.frames, joints: m.joints, startFrame: 0, label: m.name };
@@ -103,23 +153,32 @@ function showProblems(banner: MessageBanner, problems: Problem[]): void {
   problems.forEach((p, i) => banner.show(p.text, p.level, `link-${i}`));
 }
 
+const megabytes = (b: number) => `${(b / 1e6).toFixed(b >= 1e7 ? 0 : 1)} MB`;
+
 export function startApp(parts: AppParts, o: AppOptions): App {
   const { view: options, siteRoot } = o;
   const banner = new MessageBanner(parts.messages);
   if (options.page) catchUncaught(banner);
   const { view } = mountViewer(parts.viewer);
+  const setPhase = mountPhaseLabel(parts.viewer);
   const player = new Player(30);
-  mountPlaybackBar(parts.playback, player);
-  player.subscribe((s) => view.setFrame(s.position));
+  const playback = mountPlaybackBar(parts.playback, player);
+  /** The first predicted frame of what is on stage; null for a clip alone. */
+  let origin: number | null = null;
+  player.subscribe((s) => { view.setFrame(s.position); setPhase(s.frame, s.fps, origin); });
+
+  // The layout follows K until the user picks one.
+  let layoutChosen = false;
+  const setLayout = (mode: LayoutMode) => { view.setLayout(mode); toolbar.setLayout(mode); };
+  const chooseLayout = (mode: LayoutMode) => { layoutChosen = true; setLayout(mode); };
+  const toolbar = mountStageToolbar(parts.toolbar, view.layout, { onLayout: chooseLayout, onResetView: () => view.resetView() });
+  const stageStatus = mountStageStatus(parts.status);
+  const rangeNotice = mountRangeNotice(parts.notice);
 
   const panel = parts.panel;
   panel.replaceChildren();
   const info = mountClipInfo(addSection(panel, 'clip', 'Clip').body);
   const list = addSection(panel, 'clips', 'Clips').body;
-  const setLayout = (mode: LayoutMode) => { view.setLayout(mode); viewPanel.setLayout(mode); };
-  const viewPanel = mountViewPanel(addSection(panel, 'view', 'View').body, view.layout, {
-    onLayout: setLayout, onResetView: () => view.resetView(),
-  });
   const share = mountSharePanel(addSection(panel, 'share', 'Share').body);
 
   let motion: Motion | null = null;
@@ -127,41 +186,60 @@ export function startApp(parts: AppParts, o: AppOptions): App {
   // Until the link's own state is applied, changes are start-up noise, not the user's state.
   let linking = false;
   const linkParams = new Map(o.link);
+  const firstView = !linkParams.has('model');
 
+  const askFutures = () => { predictor.setLive(true); void predictor.predict(); };
   const bar = mountMinimalBar(parts.bar, {
     onNewFutures() {
-      predictor.setInputs({ seed: Math.floor(Math.random() * MAX_SEED) });
-      void predictor.predict();
+      if (predictor.last && stochastic()) predictor.setInputs({ seed: Math.floor(Math.random() * MAX_SEED) });
+      askFutures();
     },
   });
+  const stochastic = () => Boolean(predictor.inputsNow()?.model.controls.some((c) => c.id === 'k'));
 
   const predictor = new PredictController({
     baseUrl: siteRoot, panel, view, player, banner, before: 'clip', currentClip: () => motion,
     manifest: () => sharedManifest(siteRoot), client: (m) => sharedClient(siteRoot, m), viewId: newViewId(),
     status: o.status, onChange: () => refreshShare(),
-    onShown: () => { shown = predictor.last; refreshShare(); exporter.refresh(); summarise(); },
+    stageStatus: (text, state) => { stageStatus(text, state); },
+    timeline: (marks) => { origin = marks?.origin ?? null; playback.setTimeline(marks); },
+    beforeShow: (k) => { if (!layoutChosen) setLayout(defaultLayout(k)); },
+    onShown: () => {
+      shown = predictor.last;
+      const p = shown!.prediction;
+      toolbar.setLegend({
+        history: true, truth: Boolean(motion && shown && motion.frames > shown.start + (modelOf(shown.model)?.params.history_frames ?? 0)),
+        k: p.k, cut: p.samples.flatMap((s, i) => (s.cut ? [i] : [])),
+      });
+      rangeNotice(p.warnings ?? null, modelOf(shown!.model)?.label ?? shown!.model);
+      refreshShare(); exporter.refresh(); summarise();
+    },
     onSelect: () => { exporter.refresh(); summarise(); },
   });
+  // A click on a figure or its label selects it, a second click (or a click on nothing) lets go.
+  view.onPick((sample) => predictor.select(sample !== null && sample === predictor.selected ? null : sample));
+  const modelOf = (id: string) => predictor.manifest?.models.find((e) => e.id === id);
 
   // The 3D view in words (model, actions, K, lengths), below the stage and describing the canvas.
-  const stageArea = parts.viewer.parentElement ?? parts.host;
+  const stageArea = parts.viewer.closest('.stage-area') as HTMLElement | null ?? parts.host;
   const updateSummary = mountViewSummary(stageArea, () => parts.viewer.querySelector('canvas'));
   let shown: PredictController['last'] = null; // the prediction on stage (a new clip clears it)
   function summarise(): void {
-    const entry = shown && predictor.manifest?.models.find((e) => e.id === shown!.model);
+    const entry = shown && modelOf(shown.model);
     updateSummary({
       clip: motion?.name ?? null, clipFrames: motion?.frames, fps: motion?.fps ?? player.state.fps, selected: predictor.selected,
       prediction: shown && entry ? { model: entry.label, start: shown.start, historyFrames: entry.params.history_frames, p: shown.prediction } : null,
+      list: options.controls === 'full',
     });
   }
   // Capture for slides: the view as a PNG, the futures as a WebM (keys S and R).
   const capture = mountCapturePanel(addSection(panel, 'capture', 'Capture for slides', 'share').body, {
     canvas: () => parts.viewer.querySelector('canvas'),
     info: () => {
-      const entry = shown && predictor.manifest?.models.find((e) => e.id === shown!.model);
+      const entry = shown && modelOf(shown.model);
       return {
         model: entry?.label, clip: motion?.name, start: shown?.start, historyFrames: entry?.params.history_frames,
-        k: shown?.prediction.k, seed: shown ? predictor.inputsNow()?.seed : undefined, selected: predictor.selected,
+        k: shown?.prediction.k, seed: shown?.seed, selected: predictor.selected,
       };
     },
     player, render: () => view.setFrame(player.state.position), status: o.status,
@@ -171,30 +249,42 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     motion = m;
     source = from;
     shown = null;
+    origin = null;
+    predictor.clearShown();
     predictor.clipChanged(m);
-    if (!m) { view.clear(); player.load(0); refreshShare(); return; }
+    playback.setTimeline(null);
+    rangeNotice(null, '');
+    if (!m) {
+      view.clear(); player.load(0); toolbar.setLegend(null); stageStatus('No clip on stage.', 'clip'); refreshShare(); return;
+    }
     view.setTracks([clipTrack(m)], m.skeleton);
+    toolbar.setLegend({ clip: m.name, history: false, truth: false, k: 0 });
     player.load(m.frames, m.fps);
     if (options.autoplay || linking) player.play(); // a clip the user picked plays
+    const what = from.kind === 'dropped' ? `your file ${from.name}` : `the clip ${m.name}`;
+    stageStatus(`On stage: ${what}, ${m.frames} frames (${seconds(m.frames, m.fps)}).${predictor.predictsOnChange ? ' Predicting…'
+      : options.controls === 'full' ? ' Press Predict (P) for its futures.' : ''}`, 'clip');
     refreshShare();
     summarise();
+    exporter.refresh();
+    predictor.changed(); // a new history predicts again (once predictions run on their own)
   };
 
   const clips = new ClipBrowser({
-    baseUrl: siteRoot, list, info, banner, defaultClip: linkParams.get('clip') || DEFAULT_CLIP, status: o.status,
+    baseUrl: siteRoot, list, info, banner, defaultClip: linkParams.get('clip') || undefined, fallbackClip: DEFAULT_CLIP, status: o.status,
     onMotion(m) { showMotion(m, { kind: 'clip' }); },
   });
 
   // Bring your own motion: a dropped BVH becomes the history; what is shown can be saved.
-  mountImportPanel(addSection(panel, 'import', 'Your motion', 'view').body, {
+  mountImportPanel(addSection(panel, 'import', 'Your motion', 'share').body, {
     skeleton: () => clips.index?.skeleton ?? null, banner, dropTarget: parts.host, status: o.status,
     onMotion: (m) => { info.show(m); showMotion(m, { kind: 'dropped', name: m.origin.file }); },
   });
-  const exporter = mountExportPanel(addSection(panel, 'export', 'Export', 'view').body, {
+  const exporter = mountExportPanel(addSection(panel, 'export', 'Export', 'share').body, {
     banner, status: o.status,
     shown: () => {
       const last = predictor.last;
-      const entry = last && predictor.manifest?.models.find((e) => e.id === last.model);
+      const entry = last && modelOf(last.model);
       if (!last || !entry || !motion) return null;
       return shownFromPrediction(motion, last.start, entry.params.history_frames, last.prediction,
         { selected: predictor.selected, model: last.model });
@@ -233,7 +323,8 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       }
     }
     share.update(shareable);
-    bar.update(shareable, predictor.inputsNow()?.model.label ?? '', motion?.name ?? '');
+    bar.update(shareable, predictor.inputsNow()?.model.label ?? '', motion?.name ?? '',
+      predictor.last ? (stochastic() ? 'New futures' : null) : 'Show futures');
     o.onLink?.(search);
   }
 
@@ -244,8 +335,8 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       case 'speed': if (action.direction > 0) player.faster(); else player.slower(); break;
       case 'first': player.seek(0); break;
       case 'last': player.seek(player.state.length - 1); break;
-      case 'layout': setLayout(view.layout === 'overlay' ? 'side' : 'overlay'); break;
-      case 'predict': void predictor.predict(); break;
+      case 'layout': chooseLayout(view.layout === 'overlay' ? 'side' : 'overlay'); break;
+      case 'predict': askFutures(); break;
       case 'sample': predictor.select(action.index); break;
       case 'snapshot': void capture.png(); break;
       case 'record': capture.toggleRecording(); break;
@@ -257,7 +348,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     let asked: LinkState | null = null;
     try {
       const manifest = await sharedManifest(siteRoot);
-      const decoded = decodeState(o.link, manifest, SITE_VERSION, { reportUnknown: true });
+      const decoded = decodeState(withStageDefaults(o.link, manifest), manifest, SITE_VERSION, { reportUnknown: true });
       asked = decoded.state;
       showProblems(banner, decoded.problems);
       if (options.page && decoded.state.version && decoded.state.version !== SITE_VERSION) {
@@ -286,10 +377,23 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       if (predictor.historyStart() !== asked.start) {
         banner.show(`The history cannot start at frame ${asked.start} of ${motion.name}; it starts at frame ${predictor.historyStart()}.`, 'warning', 'link-start');
       }
+    } else if (motion && clips.defaultStart(motion.name) !== undefined) {
+      predictor.setStart(clips.defaultStart(motion.name)!); // the index's default history
+    }
+    // The first view predicts the action the history shows, when the model knows it.
+    const entry = predictor.inputsNow()?.model;
+    const sequence = entry?.controls.find((c) => c.type === 'actions');
+    if (firstView && motion && sequence && !linkParams.has(sequence.id) && predictor.manifest?.actions.includes(motion.action)) {
+      predictor.setInputs({ controls: { [sequence.id]: [motion.action] } });
     }
     linking = true;
     refreshShare();
+    if (!options.autoPredict && motion) {
+      stageStatus(`On stage: the clip ${motion.name}, ${motion.frames} frames (${seconds(motion.frames, motion.fps)}). `
+        + `${options.controls === 'full' ? 'Press Predict (P) for its futures.' : 'Press "Show futures" for its futures.'}`, 'clip');
+    }
     if (options.autoPredict && motion && predictor.manifest) {
+      predictor.setLive(true);
       await predictor.predict();
       if (!options.autoplay && predictor.last) { player.pause(); player.seek(Math.floor(player.state.length / 2)); }
     }
@@ -300,21 +404,36 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     onStage: () => ({ motion, source }),
     shareState,
     showMotion,
+    offline(s) {
+      const text = s.state === 'ready'
+        ? `Ready offline${s.bytes ? ` (${megabytes(s.bytes)} saved)` : ''}`
+        : s.state === 'saving' ? 'Saving for offline use…' : 'Offline use is unavailable';
+      toolbar.setOffline(text, s.state);
+      bar.offline(s.state === 'ready' ? 'Ready offline' : null);
+      o.status('offline', s.state);
+      if (s.bytes !== undefined) o.status('offlineBytes', String(s.bytes));
+    },
   };
 }
 
-/** The minimal controls' bar: what is shown, new futures, and a link to the full page. */
+/** The minimal controls' bar: what is shown, new futures (when a seed changes them), and a link to
+ *  the full page. It names only what it shows. */
 function mountMinimalBar(container: HTMLElement, handlers: { onNewFutures(): void }) {
   const caption = el('span', { class: 'mini-caption muted' });
-  const again = el('button', { type: 'button', class: 'text-button', title: 'Predict again with a new seed (P predicts with the same one)' }, 'New futures');
+  const again = el('button', { type: 'button', class: 'text-button', 'data-testid': 'new-futures', title: 'Predict again with a new seed' }, 'New futures');
+  const offline = el('span', { class: 'mini-offline muted', hidden: true });
   const open = el('a', { class: 'mini-open', target: '_blank', rel: 'noopener', hidden: true }, 'Open in motion-futures ↗');
   again.addEventListener('click', () => handlers.onNewFutures());
-  container.replaceChildren(caption, again, open);
+  container.replaceChildren(caption, again, offline, open);
   return {
-    update(s: Shareable, model: string, clip: string) {
+    /** `action`: the button's text, or null to hide it (a deterministic model: a new seed changes nothing). */
+    update(s: Shareable, model: string, clip: string, action: string | null) {
       caption.textContent = [model, clip].filter(Boolean).join(' · ');
       open.hidden = 'unlinkable' in s;
       if (!('unlinkable' in s)) open.href = s.link;
+      again.hidden = action === null;
+      if (action) again.textContent = action;
     },
+    offline(text: string | null) { offline.hidden = text === null; offline.textContent = text ?? ''; },
   };
 }

@@ -15,7 +15,10 @@ export interface ClipBrowserOptions {
   banner: MessageBanner;
   /** Called with each newly loaded clip, or null when the chosen one failed. */
   onMotion(motion: Motion | null, entry: ClipIndexEntry | null): void;
+  /** The clip asked for (a link's); without one, the index's `default` history, then `fallbackClip`. */
   defaultClip?: string;
+  /** Used when the index names no default (indexes written before it had one). */
+  fallbackClip?: string;
   /** Receives currentClip and clipStatus. */
   status: StatusSink;
 }
@@ -43,9 +46,28 @@ export class ClipBrowser {
       return;
     }
     const clips = this.index.clips;
-    this.panel = mountClipPanel(list, clips, (entry) => { void this.select(entry); });
-    const first = clips.find((c) => c.name === (this.opts.defaultClip ?? 'walk')) ?? clips[0];
+    this.panel = mountClipPanel(list, clips, (entry) => { void this.select(entry); }, this.index.notes);
+    const named = (name?: string) => (name ? clips.find((c) => c.name === name) : undefined);
+    const first = named(this.opts.defaultClip) ?? this.defaultEntry() ?? clips[0];
     if (first) await this.select(first);
+  }
+
+  /** The history the site opens on: the index's `default`, else the fallback, else the first test clip. */
+  defaultEntry(): ClipIndexEntry | undefined {
+    const clips = this.index?.clips ?? [];
+    const named = (name?: string) => (name ? clips.find((c) => c.name === name) : undefined);
+    return named(this.index?.default?.clip) ?? named(this.opts.fallbackClip) ?? clips.find((c) => c.role === 'test');
+  }
+
+  /** The first history frame the index's `default` names for this clip, if it names one. */
+  defaultStart(name: string): number | undefined {
+    const d = this.index?.default;
+    return d && d.clip === name ? d.start : undefined;
+  }
+
+  /** The index entry of a clip by name. */
+  entry(name: string): ClipIndexEntry | undefined {
+    return this.index?.clips.find((c) => c.name === name);
   }
 
   async select(entry: ClipIndexEntry): Promise<void> {
@@ -68,7 +90,7 @@ export class ClipBrowser {
     if (ticket !== this.request) return;
     this.current = motion;
     this.opts.banner.clear('clip');
-    this.opts.info.show(motion);
+    this.opts.info.show(motion, entry, this.index?.notes?.[entry.action]);
     try {
       this.opts.onMotion(motion, entry);
     } catch (err) {

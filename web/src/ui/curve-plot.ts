@@ -1,12 +1,13 @@
 // A small SVG plot of per-sample curves with threshold levels and marked frames (e.g. WAT's
 // variance v_i with delta and T_min).
 import type { Curve } from '../predictor/types';
+import { identityCss } from '../viewer/palette';
 
 const NS = 'http://www.w3.org/2000/svg';
 
-/** Distinct line colours for samples: golden-angle hues (figures use finer tints). */
+/** A sample's line colour: its figure's identity colour (viewer/palette.ts). */
 export function sampleColour(sample: number): string {
-  return `hsl(${Math.round((sample * 137.508) % 360)} 65% 45%)`;
+  return identityCss('prediction', sample);
 }
 
 function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string, string | number>): SVGElementTagNameMap[K] {

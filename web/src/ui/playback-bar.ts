@@ -1,21 +1,49 @@
-// Play/pause, frame steps, speed, scrubber and the time read-out, all bound to one Player.
+// Play/pause, frame steps, speed, scrubber and the time read-out, all bound to one Player. With a
+// prediction on stage the scrubber shades the history, marks where it ends (t = 0, the first
+// predicted frame) and each sample's stop (Eq. 8) or cut (out of bounds), and t counts from the
+// first predicted frame.
 import { el } from './dom';
 import { icon } from './icons';
 import type { Player, PlayerState } from './player';
 import { formatTime, SPEEDS } from './timeline';
 
-export function mountPlaybackBar(container: HTMLElement, player: Player): () => void {
+export interface TimelineMark {
+  frame: number;
+  kind: 'stop' | 'cut';
+  /** CSS colour: the sample's identity colour. */
+  colour: string;
+  /** What the mark is, in words (its tooltip and accessible text). */
+  label: string;
+  sample: number;
+}
+
+export interface TimelineMarks {
+  /** The first predicted frame (the history's length); 0 when there is no history. */
+  origin: number;
+  marks: TimelineMark[];
+}
+
+export interface PlaybackBar {
+  /** Marks for what is on stage; null for a clip alone. */
+  setTimeline(marks: TimelineMarks | null): void;
+  dispose(): void;
+}
+
+export function mountPlaybackBar(container: HTMLElement, player: Player): PlaybackBar {
   const back = el('button', { type: 'button', class: 'icon-button', 'aria-label': 'Previous frame', title: 'Previous frame (←)' }, icon('back'));
   const play = el('button', { type: 'button', class: 'icon-button play-button', 'data-testid': 'play' });
   const forward = el('button', { type: 'button', class: 'icon-button', 'aria-label': 'Next frame', title: 'Next frame (→)' }, icon('forward'));
   const scrubber = el('input', {
     type: 'range', class: 'scrubber', min: 0, max: 0, step: 1, value: 0, 'aria-label': 'Timeline position', 'data-testid': 'scrubber',
   });
+  const base = el('span', { class: 'scrubber-base' });
+  const track = el('div', { class: 'scrubber-track', 'aria-hidden': 'true', 'data-testid': 'scrubber-marks' }, base);
+  const wrap = el('div', { class: 'scrubber-wrap' }, track, scrubber);
   const readout = el('output', { class: 'time-readout', 'data-testid': 'time', 'aria-live': 'off' });
   const speed = el('select', { class: 'speed', 'aria-label': 'Playback speed', title: 'Playback speed ([ and ])' },
     ...SPEEDS.map((s) => el('option', { value: s }, `${s}×`)));
   container.replaceChildren(el('div', { class: 'playback-bar', role: 'group', 'aria-label': 'Playback' },
-    back, play, forward, scrubber, readout, speed));
+    back, play, forward, wrap, readout, speed));
 
   back.addEventListener('click', () => player.step(-1));
   forward.addEventListener('click', () => player.step(1));
@@ -23,8 +51,24 @@ export function mountPlaybackBar(container: HTMLElement, player: Player): () => 
   scrubber.addEventListener('input', () => { player.pause(); player.seek(Number(scrubber.value)); });
   speed.addEventListener('change', () => player.setSpeed(Number(speed.value)));
 
+  let timeline: TimelineMarks | null = null;
   let shown: Partial<PlayerState> = {};
-  return player.subscribe((s) => {
+  /** A frame's place along the scrubber, where the range input's thumb centre is at that frame. */
+  const at = (frame: number, length: number) => `calc(var(--thumb-half) + (100% - 2 * var(--thumb-half)) * ${length > 1 ? Math.min(1, frame / (length - 1)) : 0})`;
+  const drawMarks = (length: number) => {
+    if (!timeline || length <= 1) { track.replaceChildren(base); wrap.removeAttribute('data-origin'); return; }
+    const { origin, marks } = timeline;
+    wrap.dataset.origin = String(origin);
+    track.replaceChildren(base,
+      el('span', { class: 'scrubber-history', style: `left: var(--thumb-half); width: calc(${at(origin, length)} - var(--thumb-half))`, title: 'history' }),
+      el('span', { class: 'scrubber-now', style: `left: ${at(origin, length)}`, title: 'history ends: t = 0, the first predicted frame', 'data-frame': origin }),
+      ...marks.map((m) => el('span', {
+        class: `scrubber-mark scrubber-${m.kind}`, style: `left: ${at(m.frame, length)}; --mark-colour: ${m.colour}`,
+        title: m.label, 'data-frame': m.frame, 'data-sample': m.sample,
+      })),
+    );
+  };
+  const unsubscribe = player.subscribe((s) => {
     if (s.playing !== shown.playing) {
       play.replaceChildren(icon(s.playing ? 'pause' : 'play'));
       play.setAttribute('aria-label', s.playing ? 'Pause' : 'Play');
@@ -33,14 +77,24 @@ export function mountPlaybackBar(container: HTMLElement, player: Player): () => 
     if (s.length !== shown.length) {
       scrubber.max = String(Math.max(0, s.length - 1));
       for (const b of [back, play, forward, scrubber]) b.disabled = s.length <= 1;
+      drawMarks(s.length);
     }
-    if (s.frame !== shown.frame || s.length !== shown.length || s.fps !== shown.fps) {
-      const text = s.length ? formatTime(s.frame, s.length, s.fps) : 'no clip';
-      readout.textContent = text;
-      scrubber.value = String(s.frame);
-      scrubber.setAttribute('aria-valuetext', text);
-    }
+    if (s.frame !== shown.frame || s.length !== shown.length || s.fps !== shown.fps) updateTime(s);
     if (s.speed !== shown.speed) speed.value = String(s.speed);
     shown = s;
   });
+  function updateTime(s: PlayerState): void {
+    const text = s.length ? formatTime(s.frame, s.length, s.fps, timeline?.origin ?? 0) : 'no clip';
+    readout.textContent = text;
+    scrubber.value = String(s.frame);
+    scrubber.setAttribute('aria-valuetext', text);
+  }
+  return {
+    setTimeline(marks) {
+      timeline = marks;
+      drawMarks(player.state.length);
+      updateTime(player.state);
+    },
+    dispose: unsubscribe,
+  };
 }

@@ -1,19 +1,30 @@
 // Runs predictions for the page: manifest in, history window out of the current clip, futures
 // from the worker onto the stage and into the panel. Nothing here knows which method runs.
+// Never stale: once predictions run on their own (the page's first view, or after the user's first
+// Predict), any change of the request (model, seed, controls, history start, clip, a dropped file)
+// predicts again after a short pause; only the newest request's futures are shown, and until they
+// are in, the futures on stage are marked as out of date.
 import type { Manifest, ModelEntry } from '../contract/types';
 import { window as clipWindow, type Motion } from '../motion/clip';
 import { ModelLoadError, type PredictorClient } from '../predictor/client';
 import { PredictError, Superseded, type Prediction } from '../predictor/types';
 import type { Track } from '../viewer/tracks';
 import type { SkeletonView } from '../viewer/viewer';
+import { identityCss } from '../viewer/palette';
 import type { ControlValue } from './controls';
 import type { StatusSink } from './dom';
 import type { MessageBanner } from './messages';
 import { addSection } from './panel';
+import type { TimelineMarks } from './playback-bar';
 import type { Player } from './player';
-import { mountPredictionPanel, type PredictionPanel } from './prediction-panel';
+import { mountPredictionPanel, seconds, type PredictionPanel } from './prediction-panel';
 import { mountPredictPanel, type PredictPanel } from './predict-panel';
+import { readoutJson, stageReadout, type StageReadout } from './readout';
 import { buildRequest } from './request-builder';
+import type { ShownState } from './stage-parts';
+
+/** Pause after the last change before predicting again (ms). */
+export const REPREDICT_DELAY = 300;
 
 export interface PredictOptions {
   baseUrl: string;
@@ -37,6 +48,12 @@ export interface PredictOptions {
   onShown?(): void;
   /** The selected sample changed (null: none). */
   onSelect?(sample: number | null): void;
+  /** The stage's status line (what is shown, and whether it is still what the inputs ask for). */
+  stageStatus?(text: string, state: ShownState): void;
+  /** The scrubber's history shading and stop/cut marks. */
+  timeline?(marks: TimelineMarks | null): void;
+  /** Called with K before a prediction goes on stage (the page picks its layout). */
+  beforeShow?(k: number): void;
 }
 
 /** The inputs that make a request, as the share code reads and sets them. */
@@ -45,6 +62,18 @@ export interface PredictInputs {
   seed: number;
   start: number;
   controls: Record<string, ControlValue>;
+}
+
+/** What is on stage: the prediction and everything it was made from. */
+export interface Shown {
+  prediction: Prediction;
+  ms: number;
+  model: string;
+  start: number;
+  clip: string;
+  seed: number;
+  controls: Record<string, ControlValue>;
+  readout: StageReadout | null;
 }
 
 /** The tracks a prediction shows: history, each sample up to its own length, and the truth. */
@@ -58,18 +87,53 @@ export function predictionTracks(m: Motion, start: number, n: number, p: Predict
   for (let i = 0; i < p.k; i++) {
     const len = p.lengths[i];
     const from = i * p.frames * stride;
-    tracks.push({ id: `sample:${i}`, role: 'prediction', positions: p.futures.slice(from, from + len * stride), frames: len, joints: p.joints, startFrame: n, sample: i, label: `#${i + 1}` });
+    tracks.push({
+      id: `sample:${i}`, role: 'prediction', positions: p.futures.slice(from, from + len * stride), frames: len, joints: p.joints,
+      startFrame: n, sample: i, label: `#${i + 1}`, cut: Boolean(p.samples[i]?.cut),
+    });
   }
   return tracks;
 }
 
+/** The scrubber's marks: the history's end, and where each sample stopped (Eq. 8) or was cut. */
+export function timelineMarks(n: number, p: Prediction, fps: number): TimelineMarks {
+  const marks: TimelineMarks['marks'] = [];
+  p.samples.forEach((s, i) => {
+    if (!s.cut && !s.stopped) return;
+    const frame = n + Math.max(0, s.length - 1);
+    marks.push({
+      frame, kind: s.cut ? 'cut' : 'stop', colour: identityCss('prediction', i), sample: i,
+      label: s.cut ? `#${i + 1} cut at +${seconds(s.length, fps)} (out of bounds)` : `#${i + 1} stops at +${seconds(s.length, fps)}`,
+    });
+  });
+  return { origin: n, marks };
+}
+
+/** "K = 5, actions = walk → run": a model's control values, in the manifest's order. */
+export function describeControls(entry: ModelEntry, values: Record<string, ControlValue>): string {
+  return entry.controls.filter((c) => values[c.id] !== undefined).map((c) => {
+    const v = values[c.id];
+    const text = Array.isArray(v) ? (v.length ? v.map((a) => a.replace(/_/g, ' ')).join(' → ') : 'none') : typeof v === 'boolean' ? (v ? 'on' : 'off') : String(v);
+    return `${c.id === 'k' ? 'K' : c.id.replace(/_/g, ' ')} = ${text}`;
+  }).join(', ');
+}
+
 export class PredictController {
   manifest: Manifest | null = null;
-  last: { prediction: Prediction; ms: number; model: string; start: number } | null = null;
+  last: Shown | null = null;
   private client: PredictorClient | null = null;
   private inputs: PredictPanel | null = null;
   private results: PredictionPanel | null = null;
   private loaded = new Set<string>();
+  /** Predict again on every change of the request. */
+  private live = false;
+  private timer: ReturnType<typeof setTimeout> | null = null;
+  /** Incremented by every prediction asked for: only the newest one's futures are shown. */
+  private ticket = 0;
+  /** The request last asked for, and the one on stage (requestKey): a change that leads back to
+   *  either asks for nothing new. */
+  private asked: string | null = null;
+  private shownKey: string | null = null;
 
   constructor(private readonly o: PredictOptions) {}
 
@@ -93,8 +157,8 @@ export class PredictController {
     this.results.clear();
     this.inputs = mountPredictPanel(body, this.manifest, model, {
       onModel: (entry) => { this.clipChanged(this.o.currentClip(), entry); this.o.onChange?.(); },
-      onPredict: () => { void this.predict(); },
-      onChange: () => { this.o.onChange?.(); },
+      onPredict: () => { this.setLive(true); void this.predict(); },
+      onChange: () => { this.o.onChange?.(); this.changed(); },
       status: this.o.status,
     });
     this.o.status('predictStatus', 'idle');
@@ -121,7 +185,7 @@ export class PredictController {
     return { model: this.inputs.model(), seed: this.inputs.seed(), start: this.inputs.history.start(), controls: this.inputs.controls().values() };
   }
 
-  /** Set inputs (a permalink's); unknown models are left to the caller to report. */
+  /** Set inputs (a permalink's); unknown models are left to the caller to report. Does not predict. */
   setInputs(s: { model?: string; seed?: number; controls?: Record<string, ControlValue> }): void {
     if (!this.inputs) return;
     if (s.model !== undefined) this.inputs.selectModel(s.model);
@@ -144,66 +208,173 @@ export class PredictController {
     this.inputs?.history.setStart(frame);
   }
 
-  /** The sample picked in the list or by a digit key; null when none is. */
+  /** The stage went back to a clip alone: nothing predicted is shown any more. */
+  clearShown(): void {
+    this.last = null;
+    this.shownKey = null;
+    this.selected = null;
+    this.results?.clear();
+    this.o.status('stale', undefined);
+  }
+
+  /** Whether changes predict again on their own. */
+  get predictsOnChange(): boolean { return this.live; }
+
+  /** Let every later change of the request predict again on its own. */
+  setLive(on: boolean): void { this.live = on; }
+
+  /** Something the request is made of changed: predict again soon (when live), and say that what
+   *  is on stage is out of date until then. */
+  changed(): void {
+    if (!this.live || !this.inputs || !this.manifest) return;
+    const key = this.requestKey();
+    if (key !== null && key === this.shownKey && this.timer === null && this.asked === key) {
+      this.o.status('stale', undefined);
+      this.results?.stale(false);
+      return; // back to what is on stage (e.g. a change event for a value already predicted)
+    }
+    if (key !== null && key === this.asked && this.timer === null) return; // already on its way
+    this.markStale();
+    if (this.timer !== null) clearTimeout(this.timer);
+    this.timer = setTimeout(() => { this.timer = null; void this.predict(); }, REPREDICT_DELAY);
+  }
+
+  /** The sample picked in the list, on the stage or by a digit key; null when none is. */
   selected: number | null = null;
 
   select(sample: number | null): void {
+    if (sample !== null && this.last && sample >= this.last.prediction.k) sample = null;
     this.selected = sample;
     this.o.view.setSelected(sample);
     this.results?.select(sample);
     this.o.onSelect?.(sample);
   }
 
+  /** Put a prediction on stage as if the worker had returned it for the current inputs (a replay:
+   *  tests and the console use it to show a prediction with warnings or cut samples). */
+  present(p: Prediction, ms = 0): void {
+    const m = this.o.currentClip();
+    const inputs = this.inputsNow();
+    if (!m || !inputs) return;
+    this.show(m, inputs.start, inputs.model.params.history_frames, p, ms, inputs.model, inputs);
+  }
+
+  /** Everything a request is made of, as one string (null before the manifest or without a clip). */
+  requestKey(): string | null {
+    const inputs = this.inputsNow();
+    const m = this.o.currentClip();
+    if (!inputs || !m) return null;
+    return JSON.stringify([inputs.model.id, inputs.seed, inputs.start, inputs.controls, m.name, m.frames, m.origin?.file ?? null]);
+  }
+
   async predict(): Promise<void> {
+    const ticket = ++this.ticket;
+    this.asked = this.requestKey();
+    if (this.timer !== null) { clearTimeout(this.timer); this.timer = null; }
     const m = this.o.currentClip();
     if (!this.inputs || !this.manifest) return;
     if (!m) { this.inputs.setStatus('Pick a clip for the history first.'); return; }
-    const entry = this.inputs.model();
+    const inputs = this.inputsNow()!;
+    const entry = inputs.model;
     const n = entry.params.history_frames;
-    const start = this.inputs.history.start();
-    if (m.frames < start + n) { this.inputs.setStatus(`${m.name} is too short for a ${n}-frame history from frame ${start}.`); return; }
-    const request = buildRequest(entry, this.inputs.controls().values(), this.inputs.seed(), this.manifest.fps);
+    const start = inputs.start;
+    if (m.frames < start + n) {
+      const text = `${m.name} is too short for a ${n}-frame history from frame ${start}.`;
+      this.inputs.setStatus(text);
+      this.o.stageStatus?.(text, 'error');
+      return;
+    }
+    const request = buildRequest(entry, inputs.controls, inputs.seed, this.manifest.fps);
     const history = { positions: clipWindow(m, start, n), frames: n, joints: m.joints };
     try {
       this.client ??= this.o.client(this.manifest);
       const loading = !this.loaded.has(entry.id);
       this.inputs.setBusy(loading ? `Loading ${entry.label}…` : 'Predicting…', loading ? 0 : undefined);
+      this.markStale(loading ? `Loading ${entry.label}…` : 'Predicting…');
       performance.mark('mf:predict-asked'); // marks: the benchmark's first-prediction timeline
       const { prediction, ms } = await this.client.predict(this.o.viewId, entry.id, history, request,
         (loaded, total) => this.inputs?.setBusy(`Loading ${entry.label}… ${(loaded / 1e6).toFixed(1)} MB`, total ? loaded / total : undefined));
       this.loaded.add(entry.id);
       performance.mark('mf:prediction-received');
+      if (ticket !== this.ticket) return; // a newer request replaces this one
       if (this.o.currentClip() !== m) { this.inputs.setBusy(null); return; } // the user moved on to another clip
-      this.show(m, start, n, prediction, ms, entry);
+      this.show(m, start, n, prediction, ms, entry, inputs);
     } catch (err) {
-      if (err instanceof Superseded) return;
+      if (err instanceof Superseded || ticket !== this.ticket) return;
       this.inputs.setBusy(null);
+      let text: string;
       if (err instanceof PredictError) {
-        this.inputs.setStatus(err.message);
+        text = err.message;
         this.o.banner.show(`Cannot predict: ${err.message}`, 'warning', 'predict');
       } else {
-        const text = err instanceof ModelLoadError ? err.message : `Prediction failed: ${(err as Error).message ?? err}`;
-        this.inputs.setStatus(text);
+        text = err instanceof ModelLoadError ? err.message : `Prediction failed: ${(err as Error).message ?? err}`;
         this.o.banner.show(text, 'error', 'predict');
       }
+      this.inputs.setStatus(text);
+      this.o.stageStatus?.(this.last ? `Not updated (${text}). Still shown, out of date: ${this.describe(this.last)}` : `Cannot predict: ${text}`, 'error');
       this.o.status('predictStatus', 'error');
     }
   }
 
-  private show(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry): void {
+  /** "WAT (RNN): 5 futures from frames 0–9 of walk_01, seed 1, K = 5, actions = walk." */
+  describe(s: Pick<Shown, 'model' | 'start' | 'clip' | 'seed' | 'controls'> & { prediction?: Prediction }): string {
+    const entry = this.manifest?.models.find((e) => e.id === s.model);
+    if (!entry) return s.model;
+    const n = entry.params.history_frames;
+    const k = s.prediction?.k ?? Number(s.controls.k ?? 1);
+    const controls = describeControls(entry, s.controls);
+    return `${entry.label}: ${k} ${k === 1 ? 'future' : 'futures'} from frames ${s.start}–${s.start + n - 1} of ${s.clip}, seed ${s.seed}${controls ? `, ${controls}` : ''}.`;
+  }
+
+  /** The stage no longer shows what the inputs ask for: say so until the new futures are in. */
+  private markStale(doing = 'Predicting…'): void {
+    const inputs = this.inputsNow();
+    const m = this.o.currentClip();
+    this.o.status('stale', this.last ? 'true' : undefined);
+    this.results?.stale(this.last !== null);
+    if (!inputs || !m) return;
+    const next = this.describe({ model: inputs.model.id, start: inputs.start, clip: m.name, seed: inputs.seed, controls: inputs.controls });
+    this.o.stageStatus?.(this.last ? `${doing} ${next} (the figures still show the previous futures)` : `${doing} ${next}`, 'busy');
+  }
+
+  private show(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry, inputs: PredictInputs): void {
     this.o.banner.clear('predict');
-    this.last = { prediction: p, ms, model: entry.id, start };
-    this.o.view.setTracks(predictionTracks(m, start, n, p), m.skeleton, { keepView: true });
+    const truthFrames = Math.max(0, Math.min(m.frames - start - n, p.frames));
+    let readout: StageReadout | null = null;
+    try {
+      readout = stageReadout(p, clipWindow(m, start, n), truthFrames > 0 ? clipWindow(m, start + n, truthFrames) : null, m.skeleton);
+    } catch (err) {
+      this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
+    }
+    this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, readout };
+    this.shownKey = JSON.stringify([entry.id, inputs.seed, start, inputs.controls, m.name, m.frames, m.origin?.file ?? null]);
+    this.selected = null;
+    this.o.beforeShow?.(p.k);
+    this.o.view.setTracks(predictionTracks(m, start, n, p), m.skeleton);
     this.o.view.setSelected(null);
     this.o.player.load(n + Math.max(...p.lengths), m.fps, 0);
+    this.o.timeline?.(timelineMarks(n, p, m.fps));
     this.o.player.play();
-    this.results?.show(p, m.fps, ms);
+    const shown = this.last;
+    this.results?.show(p, m.fps, ms, {
+      readout, outOfRange: Boolean(p.warnings?.length),
+      readoutJson: () => (readout ? readoutJson(readout, {
+        model: entry.id, model_label: entry.label, model_hash: entry.hash, clip: shown.clip, history_start: start,
+        history_frames: n, seed: shown.seed, controls: shown.controls, fps: m.fps,
+      }) : '{}'),
+    });
     this.inputs?.setBusy(null);
-    this.inputs?.setStatus(`${entry.label}: ${p.k} ${p.k === 1 ? 'future' : 'futures'} from frames ${start}–${start + n - 1} of ${m.name}.`);
+    const text = this.describe(this.last);
+    const out = p.warnings?.length ? ' Out of the training range: shown anyway.' : '';
+    this.inputs?.setStatus(`${text}${out}`);
+    this.o.stageStatus?.(`${text}${out}`, 'shown');
+    this.o.status('stale', undefined);
     this.o.status('predictionModel', entry.id);
     this.o.status('predictionK', String(p.k));
     this.o.status('predictionLengths', Array.from(p.lengths).join(','));
+    this.o.status('predictionRange', p.warnings?.length ? 'out' : undefined);
     this.o.status('predictStatus', 'done');
+    performance.mark('mf:prediction-shown');
     this.o.onShown?.();
   }
 }

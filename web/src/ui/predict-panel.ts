@@ -25,7 +25,8 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
   if (initialModel && models.some((m) => m.id === initialModel)) select.value = initialModel;
   const description = el('p', { class: 'muted model-description' });
   const history = mountHistoryPicker(handlers.onChange);
-  const seedInput = el('input', { type: 'number', id: 'seed', min: 0, max: MAX_SEED, step: 1, value: '1' });
+  // Wide enough for every seed (up to 10 digits).
+  const seedInput = el('input', { type: 'number', id: 'seed', class: 'seed-input', min: 0, max: MAX_SEED, step: 1, value: '1' });
   const dice = el('button', { type: 'button', class: 'text-button', title: 'A new random seed' }, 'New seed');
   const controlsBox = el('div', {});
   const predict = el('button', { type: 'button', class: 'primary-button', id: 'predict' }, 'Predict');
@@ -41,7 +42,7 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
     controlsBox.replaceChildren(controls.root);
     handlers.onModel(m);
   };
-  select.addEventListener('change', showModel);
+  select.addEventListener('change', () => { showModel(); handlers.onChange(); });
   seedInput.addEventListener('change', () => {
     const v = Math.max(0, Math.min(MAX_SEED, Math.round(Number(seedInput.value) || 0)));
     seedInput.value = String(v);
@@ -55,7 +56,7 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
     history.root,
     el('div', { class: 'control-row' }, el('label', { for: 'seed' }, 'Seed'), el('div', { class: 'range-row' }, seedInput, dice)),
     controlsBox,
-    el('div', { class: 'predict-row' }, predict, el('span', { class: 'muted' }, 'or press P')),
+    el('div', { class: 'predict-row' }, predict, el('span', { class: 'muted' }, 'or press P; any change predicts again')),
     progress, status,
   );
   showModel();

@@ -33,9 +33,29 @@ export function stepFrame(frame: number, delta: number, length: number, loop: bo
   return Math.min(length - 1, Math.max(0, f));
 }
 
-/** "t = 1.23 s / 4.00 s (frame 37)": time of the frame / duration of the timeline. */
-export function formatTime(frame: number, length: number, fps: number): string {
-  return `t = ${(frame / fps).toFixed(2)} s / ${(length / fps).toFixed(2)} s (frame ${frame})`;
+/**
+ * "t = 1.23 s / 4.00 s (frame 37)": time of the frame / duration of the timeline. With an `origin`
+ * (the first predicted frame, after a history of that many frames) t counts from it: the history
+ * reads negative ("t = −0.30 s / 3.00 s (frame 1)") and the duration is the future's.
+ */
+export function formatTime(frame: number, length: number, fps: number, origin = 0): string {
+  const t = (frame - origin) / fps;
+  return `t = ${signed(t, 2, origin > 0)} s / ${((length - origin) / fps).toFixed(2)} s (frame ${frame})`;
+}
+
+/** The stage's phase label: "history" before the origin, "+0.8 s" after it; the clip's own time without one. */
+export function phaseLabel(frame: number, fps: number, origin: number): string {
+  if (origin <= 0) return `${(frame / fps).toFixed(1)} s`;
+  if (frame < origin) return 'history';
+  return `${signed((frame - origin) / fps, 1, true)} s`;
+}
+
+/** A number with a typographic minus, and a plus sign when asked; zero has no sign. */
+function signed(v: number, digits: number, plus: boolean): string {
+  const text = Math.abs(v).toFixed(digits);
+  if (Number(text) === 0) return text;
+  if (v < 0) return `\u2212${text}`;
+  return plus ? `+${text}` : text;
 }
 
 /** The next speed up (+1) or down (-1) the ladder, from whatever the current speed is. */

@@ -10,6 +10,8 @@ export interface ViewState {
   fps: number;
   prediction?: { model: string; start: number; historyFrames: number; p: Prediction } | null;
   selected: number | null;
+  /** The samples list is shown (full controls); otherwise the labels over the figures number them. */
+  list?: boolean;
 }
 
 const secs = (frames: number, fps: number) => `${(frames / fps).toFixed(2)} s`;
@@ -28,7 +30,8 @@ export function viewSummary(v: ViewState): string {
   const parts = [
     `History: frames ${pr.start}–${pr.start + pr.historyFrames - 1} of ${pretty(v.clip)}.`,
     `${pr.model}: ${p.k} ${p.k === 1 ? 'future' : 'futures'}, ${span}${actions.length ? `, actions ${actions.map(pretty).join(' then ')}` : ''}.`,
-    p.k > 1 ? `Futures are numbered 1 to ${p.k} in the list; keys 1–9 select one, 0 shows all.` : '',
+    p.warnings?.length ? `The history lies outside the model's training range (${p.warnings.map((w) => w.quantity).join(', ')}); the futures are shown anyway.` : '',
+    p.k > 1 ? `Futures are numbered 1 to ${p.k} ${v.list === false ? 'by the labels over the figures' : 'in the list and over the figures'}; keys 1–9 select one, 0 shows all.` : '',
     v.selected !== null && v.selected < p.k ? `Future #${v.selected + 1} is selected (${secs(p.lengths[v.selected], v.fps)}).` : '',
   ];
   return parts.filter(Boolean).join(' ');
@@ -37,7 +40,8 @@ export function viewSummary(v: ViewState): string {
 /** A visible, polite live summary below the stage; returns its updater. */
 export function mountViewSummary(container: HTMLElement, describes: () => Element | null): (v: ViewState) => void {
   const id = 'view-summary';
-  const node = el('p', { id, class: 'view-summary muted', 'aria-live': 'polite', 'data-testid': 'view-summary' });
+  // A fixed height (scrolling when the text is long, so it takes focus) keeps the stage above from moving.
+  const node = el('p', { id, class: 'view-summary muted', 'aria-live': 'polite', 'data-testid': 'view-summary', tabindex: 0 });
   container.append(node);
   return (v) => {
     const text = viewSummary(v);

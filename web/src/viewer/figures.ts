@@ -33,6 +33,8 @@ export class SkeletonFigures {
   private boneSides: Side[] = [];
   private jointSides: Side[] = [];
   private jointRadii: number[] = [];
+  /** The joint that shows a figure's identity colour (the head). */
+  private identityJoint = 0;
   // Scratch objects: draw() runs every animation frame.
   private readonly m = new Matrix4();
   private readonly q = new Quaternion();
@@ -53,6 +55,7 @@ export class SkeletonFigures {
     });
     this.jointSides = skeleton.joints.map(sideOf);
     this.jointRadii = skeleton.joints.map((name) => (name === 'head' ? HEAD_RADIUS : JOINT_RADIUS));
+    this.identityJoint = Math.max(0, skeleton.joints.indexOf('head'));
     this.capacity = 0; // joint count may differ: rebuild on next draw
   }
 
@@ -97,6 +100,15 @@ export class SkeletonFigures {
     joints.instanceMatrix.needsUpdate = true;
     if (bones.instanceColor) bones.instanceColor.needsUpdate = true;
     if (joints.instanceColor) joints.instanceColor.needsUpdate = true;
+  }
+
+  /** The colour the head of drawn figure `i` (in the last draw's order) has in the GPU's instance
+   *  colours, as '#rrggbb' sRGB: what the screen shows, for the legend and the tests. */
+  identityHex(i: number): string | null {
+    const colours = this.joints?.instanceColor;
+    const index = i * this.jointSides.length + this.identityJoint;
+    if (!colours || !this.joints || index >= this.joints.count) return null;
+    return this.c.fromArray(colours.array, index * 3).getHexString(SRGBColorSpace).replace(/^/, '#');
   }
 
   dispose(): void {

@@ -36,6 +36,8 @@ class InertView implements SkeletonView {
   setLayout(mode: LayoutMode): void { this.layout = mode; }
   setFrame(): void {}
   setSelected(): void {}
+  onPick(): void {}
+  figures(): [] { return []; }
   resetView(): void {}
   dispose(): void {}
 }

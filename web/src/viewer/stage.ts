@@ -1,23 +1,40 @@
-// The three.js stage: renderer, camera, orbit controls, grid and lights; renders only when something changed.
+// The three.js stage: renderer, camera, orbit controls, grid, lights and the figures' HTML labels;
+// renders only when something changed. The camera frames a plan (what must be in view at each
+// timeline frame) and follows it as the figures travel.
 import {
   Box3, Color, DirectionalLight, GridHelper, HemisphereLight, PerspectiveCamera, Scene, Vector3,
   WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { CSS2DRenderer } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
 import { requireWebGL2, WebGLUnavailableError } from './webgl';
 
 interface Theme { background: Color; gridCentre: Color; grid: Color }
+
+/**
+ * What the camera keeps in view: for each timeline frame the box of the figures shown then and the
+ * point the camera looks at then (a smoothed centre). One distance serves every frame, so the view
+ * pans with travelling figures without zooming in and out.
+ */
+export interface FramePlan {
+  direction: Vector3;
+  boxes: Box3[];
+  centres: Vector3[];
+}
 
 export class Stage {
   readonly scene = new Scene();
   readonly camera = new PerspectiveCamera(40, 1, 0.05, 200);
   readonly renderer: WebGLRenderer;
+  readonly labels: CSS2DRenderer;
   readonly controls: OrbitControls;
   private grid: GridHelper | null = null;
   private gridSize = 0;
+  private gridCentre = new Vector3();
   private pending = 0;
   private theme: Theme;
-  private lastFit: { box: Box3; direction: Vector3 } | null = null;
+  private plan: FramePlan | null = null;
+  private t = 0;
   private userMoved = false;
   private readonly resizeObserver: ResizeObserver;
   private readonly colourScheme = window.matchMedia('(prefers-color-scheme: dark)');
@@ -35,8 +52,12 @@ export class Stage {
     const canvas = this.renderer.domElement;
     canvas.classList.add('stage-canvas');
     canvas.setAttribute('role', 'img');
-    canvas.setAttribute('aria-label', 'Skeleton figures in 3D; drag to orbit, scroll to zoom');
+    canvas.setAttribute('aria-label', 'Skeleton figures in 3D; drag to orbit, scroll to zoom, click a figure to select it');
     container.append(canvas);
+    this.labels = new CSS2DRenderer();
+    this.labels.domElement.classList.add('stage-labels');
+    this.labels.domElement.setAttribute('aria-hidden', 'true');
+    container.append(this.labels.domElement);
 
     this.theme = this.readTheme();
     this.scene.background = this.theme.background;
@@ -44,12 +65,12 @@ export class Stage {
     const sun = new DirectionalLight(0xffffff, 1.6);
     sun.position.set(3, 6, 4);
     this.scene.add(sun);
-    this.setGridSize(6);
+    this.setGrid(6, new Vector3());
 
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.maxPolarAngle = Math.PI * 0.495; // stay above the floor
     this.controls.minDistance = 0.3;
-    this.controls.maxDistance = 120;
+    this.controls.maxDistance = 160;
     this.controls.addEventListener('change', () => this.invalidate());
     this.controls.addEventListener('start', () => { this.userMoved = true; });
 
@@ -66,30 +87,54 @@ export class Stage {
     if (this.pending) return;
     this.pending = requestAnimationFrame(() => {
       this.pending = 0;
-      this.renderer.render(this.scene, this.camera);
+      this.render();
     });
   }
 
-  setGridSize(size: number): void {
+  /** Render now (the labels too). */
+  render(): void {
+    this.renderer.render(this.scene, this.camera);
+    this.labels.render(this.scene, this.camera);
+  }
+
+  /** A grid of 0.5 m squares, `size` metres wide, centred near `centre` (snapped to whole metres). */
+  setGrid(size: number, centre: Vector3): void {
     const s = Math.max(2, Math.ceil(size / 2) * 2);
-    if (s === this.gridSize && this.grid) return;
+    const c = new Vector3(Math.round(centre.x), 0, Math.round(centre.z));
+    if (s === this.gridSize && c.equals(this.gridCentre) && this.grid) return;
     this.gridSize = s;
+    this.gridCentre = c;
     if (this.grid) { this.scene.remove(this.grid); this.grid.dispose(); }
-    this.grid = new GridHelper(s, s * 2, this.theme.gridCentre, this.theme.grid); // 0.5 m squares
+    this.grid = new GridHelper(s, s * 2, this.theme.gridCentre, this.theme.grid);
+    this.grid.position.copy(c);
     this.scene.add(this.grid);
     this.invalidate();
   }
 
-  /** Aim at `box` from `direction`, close enough that it fills the view. */
-  fit(box: Box3, direction: Vector3): void {
-    this.lastFit = { box: box.clone(), direction: direction.clone().normalize() };
+  /** Frame a plan (every figure at every frame) and look at its frame `t`. */
+  fit(plan: FramePlan, t = this.t): void {
+    this.plan = { direction: plan.direction.clone().normalize(), boxes: plan.boxes, centres: plan.centres };
+    this.t = t;
     this.userMoved = false;
     this.applyFit();
   }
 
-  /** Return to the last framing. */
+  /** Keep looking at the plan's frame `t` (fractional): the camera and its target move together, so an
+   *  orbit or zoom the user made is kept while the figures travel. */
+  follow(t: number): void {
+    this.t = t;
+    if (!this.plan) return;
+    const want = this.centreAt(t);
+    const delta = want.sub(this.controls.target);
+    if (delta.lengthSq() < 1e-12) return;
+    this.controls.target.add(delta);
+    this.camera.position.add(delta);
+    this.controls.update();
+  }
+
+  /** Return to the plan's framing. */
   resetView(): void {
-    if (this.lastFit) { this.userMoved = false; this.applyFit(); }
+    if (this.plan) { this.userMoved = false; this.applyFit(); }
   }
 
   dispose(): void {
@@ -100,13 +145,20 @@ export class Stage {
     this.grid?.dispose();
     this.renderer.dispose();
     this.renderer.domElement.remove();
+    this.labels.domElement.remove();
   }
 
-  private applyFit(): void {
-    if (!this.lastFit) return;
-    const { box, direction } = this.lastFit;
-    const centre = box.getCenter(new Vector3());
-    // Camera basis looking along -direction; move back until every box corner is inside the frustum.
+  private centreAt(t: number): Vector3 {
+    const cs = this.plan!.centres;
+    if (!cs.length) return new Vector3();
+    const a = Math.max(0, Math.min(cs.length - 1, Math.floor(t)));
+    const b = Math.min(cs.length - 1, a + 1);
+    return cs[a].clone().lerp(cs[b], Math.max(0, Math.min(1, t - a)));
+  }
+
+  /** The one distance at which every frame's box, seen from its centre along the direction, fits the view. */
+  private distance(): number {
+    const { boxes, centres, direction } = this.plan!;
     const right = new Vector3().crossVectors(new Vector3(0, 1, 0), direction).normalize();
     if (right.lengthSq() < 1e-9) right.set(1, 0, 0);
     const up = new Vector3().crossVectors(direction, right).normalize();
@@ -114,16 +166,25 @@ export class Stage {
     const tanH = tanV * this.camera.aspect;
     let distance = 1;
     const corner = new Vector3();
-    for (let i = 0; i < 8; i++) {
-      corner.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).sub(centre);
-      const toward = corner.dot(direction);
-      distance = Math.max(distance, toward + Math.abs(corner.dot(right)) / tanH, toward + Math.abs(corner.dot(up)) / tanV);
-    }
-    distance *= 1.08; // a little air around the figures
+    boxes.forEach((box, f) => {
+      if (box.isEmpty()) return;
+      for (let i = 0; i < 8; i++) {
+        corner.set(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).sub(centres[f]);
+        const toward = corner.dot(direction);
+        distance = Math.max(distance, toward + Math.abs(corner.dot(right)) / tanH, toward + Math.abs(corner.dot(up)) / tanV);
+      }
+    });
+    return distance * 1.06; // a little air around the figures
+  }
+
+  private applyFit(): void {
+    if (!this.plan) return;
+    const distance = this.distance();
+    const centre = this.centreAt(this.t);
     this.controls.target.copy(centre);
-    this.camera.position.copy(centre).addScaledVector(direction, distance);
+    this.camera.position.copy(centre).addScaledVector(this.plan.direction, distance);
     this.camera.near = Math.max(0.01, distance / 100);
-    this.camera.far = distance * 10 + 50;
+    this.camera.far = distance * 10 + 80;
     this.camera.updateProjectionMatrix();
     this.controls.update();
     this.invalidate();
@@ -133,6 +194,7 @@ export class Stage {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
+    this.labels.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     if (!this.userMoved) this.applyFit();
@@ -154,6 +216,11 @@ export class Stage {
     this.scene.background = this.theme.background;
     const size = this.gridSize;
     this.gridSize = 0;
-    this.setGridSize(size);
+    this.setGrid(size, this.gridCentre);
+  }
+
+  /** Width and height of the drawing area in CSS pixels. */
+  get size(): { width: number; height: number } {
+    return { width: Math.max(1, this.container.clientWidth), height: Math.max(1, this.container.clientHeight) };
   }
 }

@@ -14,6 +14,8 @@ export interface Track {
   /** Sample index of a prediction (0-based); drives its tint. */
   sample?: number;
   label?: string;
+  /** A sample cut at its last good frame (Prediction.samples[].cut): its label says so. */
+  cut?: boolean;
 }
 
 /** pending: before the track starts (hidden); playing; ended: holds its last pose. */

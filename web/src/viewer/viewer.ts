@@ -1,15 +1,39 @@
-// The skeleton viewer: tracks on a shared timeline, laid out overlaid or side by side.
-import { Box3, Vector3 } from 'three';
+// The skeleton viewer: tracks on a shared timeline, laid out overlaid or side by side. Figures travel
+// over the floor with their root paths drawn faintly; each figure (each cell, side by side) carries a
+// label in its identity colour; the camera frames every figure after each change of tracks or layout
+// and follows them as they travel.
+import {
+  Box3, BufferGeometry, Float32BufferAttribute, Group, Line, LineBasicMaterial, SRGBColorSpace, Vector3,
+} from 'three';
+import { CSS2DObject } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
 import type { Skeleton } from '../contract/types';
 import { facingAngle } from '../motion/facing';
 import { SkeletonFigures, type FigureDraw } from './figures';
-import { layoutTracks, type Layout, type LayoutMode } from './layout';
-import { Stage } from './stage';
-import { poseInto, trackPose, type Track } from './tracks';
+import { layoutTracks, ROW_SPACING, type Layout, type LayoutMode } from './layout';
+import { identityColour, identityCss } from './palette';
+import { Stage, type FramePlan } from './stage';
+import { poseInto, timelineLength, trackPose, type Track } from './tracks';
 
 export interface SetTracksOptions {
-  /** Keep the camera where it is (e.g. new samples for the same window). */
+  /** Keep the camera where it is (by default every new set of tracks is framed). */
   keepView?: boolean;
+}
+
+/** A figure as drawn now: what it is, its identity colour as the GPU holds it, and where it is on screen. */
+export interface FigureInfo {
+  /** The track's id (a shared history copy carries its cell's track id in `cell`). */
+  track: string;
+  role: Track['role'];
+  sample?: number;
+  /** The label shown over the figure (side by side: over its cell). */
+  label: string;
+  /** Cell of the layout (0 when overlaid). */
+  cell: number;
+  shared: boolean;
+  /** '#rrggbb': the instance colour of the figure's head, as drawn. */
+  colour: string | null;
+  /** Projected bounding box of the figure's joints, CSS pixels from the canvas's top-left. */
+  box: { left: number; top: number; right: number; bottom: number };
 }
 
 /** What the page talks to; the UI never needs to know whether WebGL is there. */
@@ -23,31 +47,66 @@ export interface SkeletonView {
   setFrame(t: number): void;
   /** Highlight one prediction sample, or none. */
   setSelected(sample: number | null): void;
+  /** Called with the sample a click on a figure or its label picks (null: a click on nothing). */
+  onPick(handler: (sample: number | null) => void): void;
+  /** The figures drawn now (empty without WebGL). */
+  figures(): FigureInfo[];
   resetView(): void;
   dispose(): void;
 }
 
-// Camera directions: a three-quarter front view of one figure; a raised front view of a grid.
+// Camera directions: a three-quarter front view of one figure; a raised front view of a grid. Both
+// are turned to the figures' heading.
 const OVERLAY_VIEW = new Vector3(0.65, 0.35, 1);
 const SIDE_VIEW = new Vector3(0.25, 0.95, 1);
 const UP = new Vector3(0, 1, 0);
+/** Room between cells beyond what the figures need (metres), and the smallest cells. */
+const CELL_GAP = 0.35;
+const MIN_CELL_WIDTH = 1.0;
+/** Rows closer than this hide each other from the raised front view (layout.ts ROW_SPACING). */
+const MIN_CELL_DEPTH = ROW_SPACING;
+/** Frames the camera's path is averaged over on each side: it glides instead of jittering with every step. */
+const FOLLOW_SMOOTHING = 12;
+const LABEL_LIFT = 0.3;
+const LABEL_STEP = 0.17;
+const PATH_HEIGHT = 0.004;
+
+interface LabelSlot {
+  object: CSS2DObject;
+  element: HTMLElement;
+  /** Placements (indices) whose figure the label sits over, the first visible one wins. */
+  placements: number[];
+  sample?: number;
+  /** Height above the head (metres): overlaid figures share a place, so their labels stack. */
+  lift: number;
+}
 
 export class Viewer implements SkeletonView {
   private readonly stage: Stage;
-  private readonly figures = new SkeletonFigures();
+  private readonly figuresMesh = new SkeletonFigures();
+  private readonly paths = new Group();
+  private readonly labelGroup = new Group();
   private tracks: readonly Track[] = [];
   private skeleton: Skeleton | null = null;
-  private bounds: Box3[] = [];
+  /** Per track, per stored frame: the box of its pose. */
+  private frameBoxes: Box3[][] = [];
   private arrangement: Layout = layoutTracks([], 'overlay');
   private mode: LayoutMode = 'overlay';
   private selected: number | null = null;
   private t = 0;
   private draws: FigureDraw[] = [];
+  /** Placement index of each figure in the last draw, in draw order. */
+  private drawn: number[] = [];
+  private labels: LabelSlot[] = [];
+  private pathLines: { line: Line; sample?: number; role: Track['role'] }[] = [];
+  private pick: ((sample: number | null) => void) | null = null;
+  private headJoint = 0;
 
   /** Throws WebGLUnavailableError when WebGL 2 is missing. */
   constructor(container: HTMLElement, onContextLost?: (lost: boolean) => void) {
     this.stage = new Stage(container, onContextLost);
-    this.stage.scene.add(this.figures.group);
+    this.stage.scene.add(this.paths, this.figuresMesh.group, this.labelGroup);
+    this.listenForPicks();
   }
 
   get layout(): LayoutMode { return this.mode; }
@@ -59,14 +118,19 @@ export class Viewer implements SkeletonView {
       }
     }
     this.tracks = tracks;
-    if (this.skeleton !== skeleton) { this.skeleton = skeleton; this.figures.setSkeleton(skeleton); }
-    this.bounds = tracks.map(trackBounds);
+    if (this.skeleton !== skeleton) {
+      this.skeleton = skeleton;
+      this.figuresMesh.setSkeleton(skeleton);
+      this.headJoint = Math.max(0, skeleton.joints.indexOf('head'));
+    }
+    this.frameBoxes = tracks.map(poseBoxes);
+    if (this.selected !== null && !tracks.some((tr) => tr.sample === this.selected)) this.selected = null;
     this.arrange(!options.keepView);
   }
 
   clear(): void {
     this.tracks = [];
-    this.bounds = [];
+    this.frameBoxes = [];
     this.arrange(false);
   }
 
@@ -78,6 +142,7 @@ export class Viewer implements SkeletonView {
 
   setFrame(t: number): void {
     this.t = t;
+    this.stage.follow(t);
     this.redraw();
   }
 
@@ -86,47 +151,215 @@ export class Viewer implements SkeletonView {
     this.redraw();
   }
 
+  onPick(handler: (sample: number | null) => void): void { this.pick = handler; }
+
   resetView(): void { this.stage.resetView(); }
 
   dispose(): void {
-    this.figures.dispose();
+    this.clearDecorations();
+    this.figuresMesh.dispose();
     this.stage.dispose();
   }
 
+  figures(): FigureInfo[] {
+    const camera = this.stage.camera;
+    camera.updateMatrixWorld();
+    const { width, height } = this.stage.size;
+    const v = new Vector3();
+    return this.drawn.map((pi, i) => {
+      const p = this.arrangement.placements[pi];
+      const track = this.tracks[p.track];
+      const pose = this.draws[pi].pose;
+      const box = { left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
+      for (let j = 0; j < track.joints; j++) {
+        v.set(pose[j * 3] + p.x, pose[j * 3 + 1], pose[j * 3 + 2] + p.z).project(camera);
+        const x = ((v.x + 1) / 2) * width;
+        const y = ((1 - v.y) / 2) * height;
+        box.left = Math.min(box.left, x); box.right = Math.max(box.right, x);
+        box.top = Math.min(box.top, y); box.bottom = Math.max(box.bottom, y);
+      }
+      const slot = this.labels.find((l) => l.placements.includes(pi));
+      return {
+        track: track.id, role: track.role, sample: track.sample, cell: p.cell, shared: p.shared,
+        label: slot?.element.textContent ?? '', colour: this.figuresMesh.identityHex(i), box,
+      };
+    });
+  }
+
+  /** Whether placement `p` shows a figure at timeline position `t`. */
+  private visible(pi: number, t: number): boolean {
+    const p = this.arrangement.placements[pi];
+    const track = this.tracks[p.track];
+    const state = trackPose(track, t).state;
+    if (state === 'pending') return false;
+    // A history gives way to what follows it (its cell's own track, or the futures overlaid) once it ends.
+    if (track.role === 'history' && state === 'ended' && this.tracks.some((tr) => tr.role !== 'history')) return false;
+    return true;
+  }
+
+  /** The figures' heading: the history's (or else the first track's) facing where the futures start. */
+  private heading(): number {
+    const ref = this.tracks.find((tr) => tr.role === 'history') ?? this.tracks.find((tr) => tr.role !== 'prediction') ?? this.tracks[0];
+    if (!ref || !this.skeleton) return 0;
+    return facingAngle(ref.positions, ref.role === 'history' ? ref.frames - 1 : 0, this.skeleton);
+  }
+
+  /** The room the figures need at one moment, across and along the heading (side by side's cell size). */
+  private spread(heading: number): { width: number; depth: number } {
+    const c = Math.cos(heading);
+    const s = Math.sin(heading);
+    const length = timelineLength(this.tracks);
+    const others = this.tracks.some((tr) => tr.role !== 'history');
+    let width = 0;
+    let depth = 0;
+    for (let f = 0; f < length; f++) {
+      let u0 = Infinity; let u1 = -Infinity; let v0 = Infinity; let v1 = -Infinity;
+      this.tracks.forEach((track, i) => {
+        const pose = trackPose(track, f);
+        if (pose.state === 'pending') return;
+        if (track.role === 'history' && pose.state === 'ended' && others) return;
+        const b = this.frameBoxes[i][pose.a];
+        for (const x of [b.min.x, b.max.x]) {
+          for (const z of [b.min.z, b.max.z]) {
+            const u = c * x - s * z;
+            const w = s * x + c * z;
+            u0 = Math.min(u0, u); u1 = Math.max(u1, u); v0 = Math.min(v0, w); v1 = Math.max(v1, w);
+          }
+        }
+      });
+      if (u1 >= u0) { width = Math.max(width, u1 - u0); depth = Math.max(depth, v1 - v0); }
+    }
+    return { width: Math.max(MIN_CELL_WIDTH, width + CELL_GAP), depth: Math.max(MIN_CELL_DEPTH, depth + CELL_GAP) };
+  }
+
   private arrange(reframe: boolean): void {
-    this.arrangement = layoutTracks(this.tracks, this.mode);
+    const heading = this.heading();
+    const { width, height } = this.stage.size;
+    const cell = this.mode === 'side' ? this.spread(heading) : null;
+    this.arrangement = layoutTracks(this.tracks, this.mode, {
+      heading, spacing: MIN_CELL_WIDTH, rowSpacing: MIN_CELL_DEPTH,
+      cellWidth: cell?.width, cellDepth: cell?.depth, aspect: width / height,
+    });
     this.draws = this.arrangement.placements.map((p) => ({
       pose: new Float32Array(this.tracks[p.track].joints * 3), x: p.x, z: p.z, tint: { role: this.tracks[p.track].role },
     }));
-    const box = new Box3();
-    for (const p of this.arrangement.placements) {
-      const b = this.bounds[p.track];
-      if (!b.isEmpty()) box.union(b.clone().translate(new Vector3(p.x, 0, p.z)));
-    }
-    if (box.isEmpty()) box.set(new Vector3(-0.5, 0, -0.5), new Vector3(0.5, 1.8, 0.5));
-    box.expandByPoint(new Vector3(box.min.x, 0, box.min.z)); // keep the floor in view
-    const reach = Math.max(-box.min.x, box.max.x, -box.min.z, box.max.z);
-    this.stage.setGridSize(Math.max(6, 2 * reach + 2)); // the grid is centred on the origin
-    if (reframe) this.stage.fit(box, this.viewDirection());
+    this.decorate();
+    const plan = this.plan(heading);
+    const all = new Box3();
+    for (const b of plan.boxes) all.union(b);
+    if (all.isEmpty()) all.set(new Vector3(-0.5, 0, -0.5), new Vector3(0.5, 1.8, 0.5));
+    const centre = all.getCenter(new Vector3());
+    this.stage.setGrid(Math.max(6, 2 * Math.max(all.max.x - centre.x, all.max.z - centre.z) + 3), centre);
+    if (reframe) this.stage.fit(plan, this.t);
+    else this.stage.follow(this.t);
     this.redraw();
   }
 
-  /** Overlaid: face the figure (its facing at its first frame); side by side: face the grid. */
-  private viewDirection(): Vector3 {
-    if (this.mode === 'side' && this.arrangement.cells > 1) return SIDE_VIEW.clone();
-    const ref = this.tracks.find((tr) => tr.role !== 'prediction') ?? this.tracks[0];
-    if (!ref || !this.skeleton) return OVERLAY_VIEW.clone();
-    return OVERLAY_VIEW.clone().applyAxisAngle(UP, facingAngle(ref.positions, 0, this.skeleton));
+  /** Per timeline frame: the box of every figure shown then, and a smoothed point to look at. */
+  private plan(heading: number): FramePlan {
+    const length = Math.max(1, timelineLength(this.tracks));
+    const labelRoom = Math.max(0, ...this.labels.map((l) => l.lift)) + 0.12;
+    const boxes: Box3[] = [];
+    for (let f = 0; f < length; f++) {
+      const box = new Box3();
+      this.arrangement.placements.forEach((p, pi) => {
+        if (!this.visible(pi, f)) return;
+        const pose = trackPose(this.tracks[p.track], f);
+        box.union(this.frameBoxes[p.track][pose.a].clone().translate(new Vector3(p.x, 0, p.z)));
+      });
+      if (!box.isEmpty()) {
+        box.expandByPoint(new Vector3(box.min.x, 0, box.min.z)); // keep the floor in view
+        box.max.y += labelRoom; // and the labels over the heads
+      }
+      boxes.push(box);
+    }
+    if (boxes.every((b) => b.isEmpty())) boxes[0] = new Box3(new Vector3(-0.5, 0, -0.5), new Vector3(0.5, 1.8, 0.5));
+    const raw = boxes.map((b) => (b.isEmpty() ? null : b.getCenter(new Vector3())));
+    const centres = raw.map((_, f) => {
+      const sum = new Vector3();
+      let n = 0;
+      for (let g = Math.max(0, f - FOLLOW_SMOOTHING); g <= Math.min(raw.length - 1, f + FOLLOW_SMOOTHING); g++) {
+        if (raw[g]) { sum.add(raw[g]!); n++; }
+      }
+      return n ? sum.divideScalar(n) : new Vector3(0, 0.9, 0);
+    });
+    const direction = (this.mode === 'side' && this.arrangement.cells > 1 ? SIDE_VIEW : OVERLAY_VIEW).clone().applyAxisAngle(UP, heading);
+    return { direction, boxes, centres };
+  }
+
+  private clearDecorations(): void {
+    for (const { line } of this.pathLines) {
+      line.geometry.dispose();
+      (line.material as LineBasicMaterial).dispose();
+    }
+    this.paths.clear();
+    this.pathLines = [];
+    for (const l of this.labels) l.element.remove();
+    this.labelGroup.clear();
+    this.labels = [];
+  }
+
+  /** Root paths (one per figure placed, history copies included) and labels (one per figure, or per cell). */
+  private decorate(): void {
+    this.clearDecorations();
+    this.arrangement.placements.forEach((p) => {
+      const track = this.tracks[p.track];
+      const points = new Float32Array(track.frames * 3);
+      for (let f = 0; f < track.frames; f++) {
+        const at = f * track.joints * 3;
+        points[f * 3] = track.positions[at] + p.x;
+        points[f * 3 + 1] = PATH_HEIGHT;
+        points[f * 3 + 2] = track.positions[at + 2] + p.z;
+      }
+      const geometry = new BufferGeometry();
+      geometry.setAttribute('position', new Float32BufferAttribute(points, 3));
+      const [r, g, b] = identityColour(track.role, track.sample ?? 0);
+      const material = new LineBasicMaterial({ transparent: true, opacity: 0.5, depthWrite: false });
+      material.color.setRGB(r, g, b, SRGBColorSpace);
+      const line = new Line(geometry, material);
+      line.frustumCulled = false;
+      this.paths.add(line);
+      this.pathLines.push({ line, sample: track.sample, role: track.role });
+    });
+    // Side by side: one label per cell, over whichever figure the cell shows (its history copy first,
+    // then its own track). Overlaid: one label per track.
+    const groups = new Map<number, number[]>();
+    this.arrangement.placements.forEach((p, pi) => {
+      const key = this.mode === 'side' && this.arrangement.cells > 1 ? p.cell : p.track;
+      groups.set(key, [...(groups.get(key) ?? []), pi]);
+    });
+    let rank = 0;
+    for (const placements of groups.values()) {
+      const owner = this.arrangement.placements[placements.find((pi) => !this.arrangement.placements[pi].shared) ?? placements[0]];
+      const track = this.tracks[owner.track];
+      const element = document.createElement('div');
+      element.className = `figure-label figure-label-${track.role}`;
+      element.textContent = labelText(track);
+      element.style.setProperty('--figure-colour', identityCss(track.role, track.sample ?? 0));
+      if (track.sample !== undefined) {
+        element.dataset.sample = String(track.sample);
+        element.addEventListener('click', (e) => { e.stopPropagation(); this.pick?.(track.sample ?? null); });
+      }
+      element.dataset.role = track.role;
+      const object = new CSS2DObject(element);
+      object.center.set(0.5, 1);
+      this.labelGroup.add(object);
+      // Overlaid, labels stack above the shared place (the history, whose figure gives way to the
+      // futures, shares the first step with the ground truth).
+      const lift = LABEL_LIFT + (this.mode === 'overlay' || this.arrangement.cells <= 1 ? LABEL_STEP * rank : 0);
+      if (track.role !== 'history') rank += 1;
+      this.labels.push({ object, element, placements, sample: track.sample, lift });
+    }
   }
 
   private redraw(): void {
     const visible: FigureDraw[] = [];
+    this.drawn = [];
+    const shown = new Set<number>();
     this.arrangement.placements.forEach((p, i) => {
+      if (!this.visible(i, this.t)) return;
       const track = this.tracks[p.track];
       const pose = trackPose(track, this.t);
-      if (pose.state === 'pending') return;
-      // A shared history copy gives way to its cell's own track once it ends.
-      if (p.shared && pose.state === 'ended') return;
       const draw = this.draws[i];
       poseInto(track, pose, draw.pose);
       const isPrediction = track.role === 'prediction';
@@ -136,16 +369,73 @@ export class Viewer implements SkeletonView {
         muted: isPrediction && this.selected !== null && !selected, ended: pose.state === 'ended',
       };
       visible.push(draw);
+      this.drawn.push(i);
+      shown.add(i);
     });
-    this.figures.draw(visible);
+    this.figuresMesh.draw(visible);
+    for (const l of this.labels) {
+      const pi = l.placements.find((i) => shown.has(i));
+      l.object.visible = pi !== undefined;
+      l.element.classList.toggle('figure-label-selected', this.selected !== null && l.sample === this.selected);
+      l.element.classList.toggle('figure-label-muted', this.selected !== null && l.sample !== undefined && l.sample !== this.selected);
+      if (pi === undefined) continue;
+      const p = this.arrangement.placements[pi];
+      const pose = this.draws[pi].pose;
+      const j = this.headJoint * 3;
+      l.object.position.set(pose[j] + p.x, pose[j + 1] + l.lift, pose[j + 2] + p.z);
+    }
+    for (const { line, sample, role } of this.pathLines) {
+      const m = line.material as LineBasicMaterial;
+      m.opacity = this.selected === null || role !== 'prediction' ? 0.5 : sample === this.selected ? 0.9 : 0.15;
+    }
     this.stage.invalidate();
+  }
+
+  /** A click (not a drag) on the canvas picks the figure under it: the smallest box that holds the point. */
+  private listenForPicks(): void {
+    const canvas = this.stage.renderer.domElement;
+    let down: { x: number; y: number; at: number } | null = null;
+    canvas.addEventListener('pointerdown', (e) => { down = { x: e.clientX, y: e.clientY, at: performance.now() }; });
+    canvas.addEventListener('pointerup', (e) => {
+      if (!down || !this.pick) return;
+      const moved = Math.hypot(e.clientX - down.x, e.clientY - down.y);
+      const quick = performance.now() - down.at < 600;
+      down = null;
+      if (moved > 5 || !quick) return;
+      const r = canvas.getBoundingClientRect();
+      const x = e.clientX - r.left;
+      const y = e.clientY - r.top;
+      const pad = 8;
+      let best: FigureInfo | null = null;
+      let bestArea = Infinity;
+      for (const f of this.figures()) {
+        const { left, top, right, bottom } = f.box;
+        if (x < left - pad || x > right + pad || y < top - pad || y > bottom + pad) continue;
+        const area = (right - left) * (bottom - top);
+        if (area < bestArea) { best = f; bestArea = area; }
+      }
+      this.pick(best?.role === 'prediction' ? best.sample ?? null : null);
+    });
   }
 }
 
-function trackBounds(track: Track): Box3 {
-  const box = new Box3();
+function labelText(track: Track): string {
+  if (track.role === 'prediction') return `#${(track.sample ?? 0) + 1}${track.cut ? ' · cut' : ''}`;
+  if (track.role === 'truth') return 'ground truth';
+  if (track.role === 'history') return 'history';
+  return track.label ?? 'clip';
+}
+
+/** Each stored frame's box of joint positions. */
+function poseBoxes(track: Track): Box3[] {
   const p = track.positions;
+  const out: Box3[] = [];
   const v = new Vector3();
-  for (let i = 0; i < track.frames * track.joints * 3; i += 3) box.expandByPoint(v.set(p[i], p[i + 1], p[i + 2]));
-  return box;
+  const stride = track.joints * 3;
+  for (let f = 0; f < track.frames; f++) {
+    const box = new Box3();
+    for (let i = f * stride; i < (f + 1) * stride; i += 3) box.expandByPoint(v.set(p[i], p[i + 1], p[i + 2]));
+    out.push(box);
+  }
+  return out;
 }

@@ -1,0 +1,467 @@
+// Issue 20, "the stage a newcomer reads in ten seconds", in a real Chromium: with no input the page and
+// the bare embed show K = 5 futures of the stage model from a held-out history, apart and large
+// enough to read, each figure named; changes predict again on their own; the camera frames every
+// figure; the scrubber marks the history and t counts from the first predicted frame; the read-out
+// gives the evaluation's numbers; messages and range warnings never move the stage; the minimal
+// embed is mostly stage. Data-driven: the clip index and the manifest say what to expect.
+import { writeFile } from 'node:fs/promises';
+import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
+import type { Frame, Page } from 'playwright-core';
+import { openBrowser, type BrowserSession } from './browser';
+import { defaultHistory, horizonFrames, index, manifest, otherClip, stageModel } from './data';
+import { NO_PROBLEMS, predicted, settle } from './predict-page';
+
+const baseUrl = inject('baseUrl');
+const FIRST_K = 5;
+const N = stageModel.params.history_frames;
+/** Issue 20: futures within 5 s of opening the page, figures at least 60 px tall, pairs 5 cm apart. */
+const FIRST_FUTURES_MS = 5000;
+const MIN_FIGURE_PX = 60;
+const MIN_PAIR_M = 0.05;
+
+type Target = Page | Frame;
+
+/** Mean per-joint distance between each pair of samples at their last common frame (metres). */
+const pairDistances = (t: Target) => t.evaluate(() => {
+  const app = document.querySelector('motion-futures')!.app!;
+  const p = app.predictor.last!.prediction;
+  const J = p.joints;
+  const out: number[] = [];
+  for (let i = 0; i < p.k; i++) {
+    for (let j = i + 1; j < p.k; j++) {
+      const f = Math.min(p.lengths[i], p.lengths[j]) - 1;
+      let sum = 0;
+      for (let q = 0; q < J; q++) {
+        const a = ((i * p.frames + f) * J + q) * 3;
+        const b = ((j * p.frames + f) * J + q) * 3;
+        sum += Math.hypot(p.futures[a] - p.futures[b], p.futures[a + 1] - p.futures[b + 1], p.futures[a + 2] - p.futures[b + 2]);
+      }
+      out.push(sum / J);
+    }
+  }
+  return out;
+});
+
+/** The figures drawn at each of `frames` (timeline frames): label, colour, projected box, and the canvas size. */
+const figuresAt = (t: Target, frames: number[]) => t.evaluate((fs) => {
+  const app = document.querySelector('motion-futures')!.app!;
+  const canvas = app.host.shadowRoot!.querySelector('canvas')!;
+  app.player.pause();
+  return fs.map((f) => {
+    app.player.seek(f);
+    return { frame: f, width: canvas.clientWidth, height: canvas.clientHeight, figures: app.view.figures() };
+  });
+}, frames);
+
+/** Timeline frames worth checking: the first predicted one, the middle of the futures, the last. */
+const keyFrames = (t: Target) => t.evaluate((n) => {
+  const length = document.querySelector('motion-futures')!.app!.player.state.length;
+  return [n, Math.floor((n + length - 1) / 2), length - 1];
+}, N);
+
+function expectFramed(shots: Awaited<ReturnType<typeof figuresAt>>, what: string): void {
+  for (const s of shots) {
+    expect(s.figures.length, `${what}: figures at frame ${s.frame}`).toBeGreaterThan(0);
+    for (const f of s.figures) {
+      const where = `${what}, frame ${s.frame}, ${f.label}`;
+      expect(f.box.left, where).toBeGreaterThanOrEqual(0);
+      expect(f.box.top, where).toBeGreaterThanOrEqual(0);
+      expect(f.box.right, where).toBeLessThanOrEqual(s.width);
+      expect(f.box.bottom, where).toBeLessThanOrEqual(s.height);
+      expect(f.box.bottom - f.box.top, `${where}: height in px`).toBeGreaterThanOrEqual(MIN_FIGURE_PX);
+    }
+  }
+}
+
+/** A fingerprint of the futures on stage. */
+const futures = (t: Target) => t.evaluate(() => {
+  const p = document.querySelector('motion-futures')!.app!.predictor.last?.prediction;
+  if (!p) return null;
+  const bytes = new Uint8Array(p.futures.buffer, p.futures.byteOffset, p.futures.byteLength);
+  let h = 2166136261;
+  for (const b of bytes) { h ^= b; h = Math.imul(h, 16777619) >>> 0; }
+  return `${p.k}:${Array.from(p.lengths).join(',')}:${h.toString(16)}`;
+});
+
+/** Wait until the futures on stage differ from `before` (a new prediction, asked for by nothing but a change). */
+const changedFrom = (page: Page, before: string | null) => page.waitForFunction((b) => {
+  const app = window.motionFutures!;
+  const p = app.predictor.last?.prediction;
+  if (!p || document.body.dataset.predictStatus !== 'done') return false;
+  const bytes = new Uint8Array(p.futures.buffer, p.futures.byteOffset, p.futures.byteLength);
+  let h = 2166136261;
+  for (const x of bytes) { h ^= x; h = Math.imul(h, 16777619) >>> 0; }
+  return `${p.k}:${Array.from(p.lengths).join(',')}:${h.toString(16)}` !== b;
+}, before, { timeout: 60_000, polling: 100 });
+
+describe('the first view (1440 x 900)', () => {
+  let session: BrowserSession;
+  let page: Page;
+
+  beforeAll(async () => {
+    session = await openBrowser({ viewport: { width: 1440, height: 900 } });
+    page = session.page;
+    await session.context.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(baseUrl).origin });
+    await page.goto(baseUrl);
+    await predicted(page);
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it(`shows K = ${FIRST_K} futures of ${stageModel.label} from the default held-out history within 5 s, without a click`, async () => {
+    const d = await page.evaluate(() => ({ ...document.body.dataset }));
+    expect(d.predictionModel).toBe(stageModel.id);
+    expect(d.predictionK).toBe(String(FIRST_K));
+    const shownAt = await page.evaluate(() => performance.getEntriesByName('mf:prediction-shown')[0]?.startTime ?? Infinity);
+    expect(shownAt, 'ms from navigation to the futures on stage').toBeLessThanOrEqual(FIRST_FUTURES_MS);
+    const { clip, start } = defaultHistory();
+    expect(d.currentClip).toBe(clip.name);
+    expect(await page.locator('#history-start').inputValue()).toBe(String(start));
+    // held out: the whole window lies in a test range of the split
+    expect(clip.test.some(([a, b]) => a <= start && start + N <= b), `${clip.name}@${start} lies in the test split`).toBe(true);
+    expect(await page.locator('.history-note').textContent()).toMatch(/test part/);
+    console.log(`first futures on stage ${shownAt.toFixed(0)} ms after navigation (${clip.name}@${start})`);
+  });
+
+  it.skipIf(!index.default)("the index's default history has ground truth for the whole horizon, and the read-out gives its numbers", async () => {
+    const { clip, start } = defaultHistory();
+    const horizon = horizonFrames(stageModel);
+    expect(clip.test.some(([a, b]) => a <= start && start + N + horizon <= b), `${clip.name}@${start}: ${N} + ${horizon} frames held out`).toBe(true);
+    const r = await page.evaluate(() => window.motionFutures!.predictor.last!.readout);
+    expect(r?.covered).toBe(true);
+    expect(r!.truthFrames).toBeGreaterThanOrEqual(r!.frames);
+  });
+
+  it(`every pair of futures is at least ${MIN_PAIR_M * 100} cm apart at their last common frame`, async () => {
+    const d = await pairDistances(page);
+    expect(d).toHaveLength((FIRST_K * (FIRST_K - 1)) / 2);
+    expect(Math.min(...d)).toBeGreaterThanOrEqual(MIN_PAIR_M);
+  });
+
+  it(`keeps K > 3 samples apart, frames every figure, each at least ${MIN_FIGURE_PX} px tall`, async () => {
+    expect(await page.locator('input[name="layout"][value="side"]').isChecked()).toBe(true);
+    expectFramed(await figuresAt(page, await keyFrames(page)), 'first view');
+  });
+
+  it('names every figure: a legend, one label per figure, swatches in the figures\' own colours', async () => {
+    const legend = page.getByTestId('legend');
+    for (const role of ['history', 'truth', 'prediction']) expect(await legend.locator(`[data-role="${role}"]`).count(), role).toBe(1);
+    expect(await legend.textContent()).toMatch(/history.*ground truth.*samples #1–5/);
+    // At the first predicted frame every sample is drawn: one visible label per figure, with its name.
+    const [shot] = await figuresAt(page, [N]);
+    await settle(page); // labels show or hide when the stage renders
+    const labels = await page.evaluate(() => [...document.querySelector('motion-futures')!.shadowRoot!.querySelectorAll<HTMLElement>('.figure-label')]
+      .filter((l) => l.style.display !== 'none').map((l) => l.textContent));
+    expect(labels.sort()).toEqual(shot.figures.map((f) => f.label).sort());
+    expect(shot.figures.filter((f) => f.role === 'prediction').map((f) => f.label.replace(/ ·.*$/, '')).sort())
+      .toEqual(Array.from({ length: FIRST_K }, (_, i) => `#${i + 1}`).sort());
+    const swatches = await page.evaluate(() => [...document.querySelector('motion-futures')!.shadowRoot!.querySelectorAll<HTMLElement>('[data-testid="sample-swatch"]')]
+      .map((s) => `#${getComputedStyle(s).backgroundColor.match(/\d+/g)!.slice(0, 3).map((v) => Number(v).toString(16).padStart(2, '0')).join('')}`));
+    const colours = shot.figures.filter((f) => f.role === 'prediction').sort((a, b) => a.sample! - b.sample!).map((f) => f.colour);
+    expect(swatches).toEqual(colours);
+    await writeFile('/tmp/stage-first-1440.png', await session.screenshot('stage-first-1440.png'));
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('selecting a sample in the list or on the stage highlights it in both', async () => {
+    await page.evaluate(() => window.motionFutures!.player.pause());
+    await page.locator('.sample-button').nth(2).click();
+    const selected = () => page.evaluate(() => [...document.querySelector('motion-futures')!.shadowRoot!.querySelectorAll('.figure-label-selected')].map((e) => e.textContent));
+    expect((await selected()).map((t) => t!.replace(/ ·.*$/, ''))).toEqual(['#3']);
+    await page.locator('.figure-label[data-sample="0"]').click();
+    expect(await page.locator('.sample-button').first().getAttribute('aria-pressed')).toBe('true');
+    expect(await page.locator('.sample-button').nth(2).getAttribute('aria-pressed')).toBe('false');
+    expect((await selected()).map((t) => t!.replace(/ ·.*$/, ''))).toEqual(['#1']);
+    await page.locator('.figure-label[data-sample="0"]').click();
+    expect(await page.locator('.sample-button[aria-pressed="true"]').count()).toBe(0);
+  });
+
+  it('the scrubber shades the history and marks its end; t reads 0 at the first predicted frame', async () => {
+    expect(await page.getByTestId('scrubber-marks').locator('.scrubber-now').getAttribute('data-frame')).toBe(String(N));
+    expect(await page.getByTestId('scrubber-marks').locator('.scrubber-history').count()).toBe(1);
+    await page.evaluate((n) => window.motionFutures!.player.seek(n), N);
+    expect(await page.getByTestId('time').textContent()).toMatch(/^t = 0\.00 s \/ \d+\.\d\d s \(frame \d+\)$/);
+    expect(await page.getByTestId('phase').textContent()).toBe('0.0 s');
+    await page.evaluate(() => window.motionFutures!.player.seek(0));
+    expect(await page.getByTestId('time').textContent()).toMatch(/^t = −\d\.\d\d s/);
+    expect(await page.getByTestId('phase').textContent()).toBe('history');
+    const later = await page.evaluate((f) => { const pl = window.motionFutures!.player; pl.seek(Math.min(f, pl.state.length - 1)); return pl.state.frame; }, N + 24);
+    expect(await page.getByTestId('phase').textContent()).toBe(later === N ? '0.0 s' : `+${((later - N) / 30).toFixed(1)} s`);
+    // each sample that stopped (Eq. 8) or was cut has its mark, at its last frame
+    const p = await page.evaluate(() => { const x = window.motionFutures!.predictor.last!.prediction; return x.samples.map((s) => ({ length: s.length, stopped: s.stopped, cut: Boolean(s.cut) })); });
+    const marks = await page.getByTestId('scrubber-marks').locator('.scrubber-mark').evaluateAll((ms) => ms.map((m) => ({ frame: Number(m.getAttribute('data-frame')), cut: m.classList.contains('scrubber-cut') })));
+    expect(marks).toEqual(p.flatMap((s) => (s.stopped || s.cut ? [{ frame: N + s.length - 1, cut: s.cut }] : [])));
+  });
+
+  it('the read-out shows best-of-K ADE and FDE (root-relative and world) and APD, and copies them as JSON', async () => {
+    const r = await page.evaluate(() => window.motionFutures!.predictor.last!.readout!);
+    const apd = await page.locator('.readout-apd strong').textContent();
+    expect(apd).toBe(`${r.apd.toFixed(3)} m`);
+    if (r.covered) {
+      const cell = (metric: string, kind: string) => page.locator(`.readout-table tr[data-metric="${metric}"] td[data-kind="${kind}"]`).textContent();
+      expect(await cell('best-of-K ADE', 'root_relative')).toBe(`${r.best!.rootRelative.ade.toFixed(3)} m`);
+      expect(await cell('best-of-K ADE', 'world')).toBe(`${r.best!.world.ade.toFixed(3)} m`);
+      expect(await cell('best-of-K FDE', 'root_relative')).toBe(`${r.best!.rootRelative.fde.toFixed(3)} m`);
+      expect(await page.locator('.sample-numbers').count()).toBe(FIRST_K);
+    } else {
+      expect(await page.locator('.readout-uncovered').textContent()).toMatch(/ground truth covers/);
+    }
+    await page.getByTestId('copy-numbers').click();
+    await expect.poll(() => page.locator('.copy-status').textContent()).toBe('Copied.');
+    const json = JSON.parse(await page.evaluate(() => navigator.clipboard.readText()));
+    expect(json.model).toBe(stageModel.id);
+    expect(json.samples).toHaveLength(FIRST_K);
+    expect(json.best_of_k === null).toBe(!r.covered);
+    if (r.covered) expect(json.best_of_k.root_relative.ade).toBeCloseTo(r.best!.rootRelative.ade, 5);
+  });
+
+  it('the status line names the model, the history, the seed and the controls of what is shown', async () => {
+    const text = await page.getByTestId('stage-status').textContent();
+    const { clip, start } = defaultHistory();
+    expect(text).toContain(stageModel.label);
+    expect(text).toContain(`frames ${start}–${start + N - 1} of ${clip.name}`);
+    expect(text).toMatch(/seed \d+/);
+    expect(text).toContain(`K = ${FIRST_K}`);
+  });
+});
+
+describe('never stale: every change predicts again on its own', () => {
+  let session: BrowserSession;
+  let page: Page;
+
+  beforeAll(async () => {
+    session = await openBrowser({ viewport: { width: 1280, height: 860 } });
+    page = session.page;
+    await page.goto(baseUrl);
+    await predicted(page);
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it('a new seed (typed, or "New seed") changes the futures with no click on Predict', async () => {
+    let before = await futures(page);
+    await page.locator('#seed').fill('12345');
+    await page.locator('#seed').dispatchEvent('change');
+    expect(await page.evaluate(() => document.body.dataset.stale)).toBe('true'); // marked until the new futures are in
+    await changedFrom(page, before);
+    expect(await page.getByTestId('stage-status').textContent()).toMatch(/seed 12345/);
+    before = await futures(page);
+    await page.getByRole('button', { name: 'New seed' }).click();
+    await changedFrom(page, before);
+  });
+
+  it('a control (K) changes the futures', async () => {
+    const before = await futures(page);
+    await page.locator('#control-k').fill('3');
+    await page.locator('#control-k').dispatchEvent('change');
+    await changedFrom(page, before);
+    expect(await page.evaluate(() => document.body.dataset.predictionK)).toBe('3');
+  });
+
+  it('another model changes the futures', async () => {
+    const other = manifest.models.find((m) => m.id !== stageModel.id && m.method !== 'keyposes')!;
+    const before = await futures(page);
+    await page.locator('#model-select').selectOption(other.id);
+    await changedFrom(page, before);
+    expect(await page.evaluate(() => document.body.dataset.predictionModel)).toBe(other.id);
+    await page.locator('#model-select').selectOption(stageModel.id);
+    await page.waitForFunction((id) => document.body.dataset.predictionModel === id && document.body.dataset.predictStatus === 'done', stageModel.id);
+  });
+
+  it('another history (another clip) changes the futures', async () => {
+    const clip = otherClip(defaultHistory().clip.name);
+    const before = await futures(page);
+    await page.locator(`[data-clip="${clip.name}"]`).click();
+    await changedFrom(page, before);
+    expect(await page.getByTestId('stage-status').textContent()).toContain(`of ${clip.name}`);
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('with predict="0" nothing predicts until asked', async () => {
+    const s = await openBrowser();
+    try {
+      await s.page.goto(`${baseUrl}?predict=0`);
+      await s.page.waitForSelector('body[data-clip-status="ready"]', { state: 'attached', timeout: 60_000 });
+      await s.page.locator('#seed').fill('99');
+      await s.page.locator('#seed').dispatchEvent('change');
+      await s.page.waitForTimeout(1500); // nothing should start, which only time can show
+      expect(await s.page.evaluate(() => document.body.dataset.predictionModel)).toBeUndefined();
+      expect(await s.page.getByTestId('stage-status').textContent()).toMatch(/Press Predict/);
+      await s.page.locator('#predict').click();
+      await predicted(s.page);
+      expect(s.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await s.close();
+    }
+  });
+});
+
+describe('K = 10 side by side', () => {
+  it(`frames every figure inside the canvas, each at least ${MIN_FIGURE_PX} px tall`, async () => {
+    const session = await openBrowser({ viewport: { width: 1440, height: 900 } });
+    try {
+      const { page } = session;
+      await page.goto(`${baseUrl}?model=${stageModel.id}&k=10`);
+      await predicted(page);
+      await page.locator('input[name="layout"][value="side"]').check();
+      await settle(page);
+      expect(await page.evaluate(() => document.body.dataset.predictionK)).toBe('10');
+      const shots = await figuresAt(page, await keyFrames(page));
+      expect(shots[0].figures.filter((f) => f.role === 'prediction')).toHaveLength(10);
+      expectFramed(shots, 'K = 10 side by side');
+      await page.evaluate((n) => window.motionFutures!.player.seek(n + 12), N);
+      await settle(page);
+      await writeFile('/tmp/stage-k10-side.png', await session.screenshot('stage-k10-side.png'));
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
+describe('the phone (390 x 844)', () => {
+  it('shows the first view with every figure inside the canvas', async () => {
+    const session = await openBrowser({ viewport: { width: 390, height: 844 } });
+    try {
+      const { page } = session;
+      await page.goto(baseUrl);
+      await predicted(page);
+      const shots = await figuresAt(page, await keyFrames(page));
+      for (const s of shots) {
+        for (const f of s.figures) {
+          expect(f.box.left).toBeGreaterThanOrEqual(0);
+          expect(f.box.right).toBeLessThanOrEqual(s.width);
+          expect(f.box.top).toBeGreaterThanOrEqual(0);
+          expect(f.box.bottom).toBeLessThanOrEqual(s.height);
+        }
+      }
+      await page.evaluate((n) => window.motionFutures!.player.seek(n + 12), N);
+      await settle(page);
+      await writeFile('/tmp/stage-first-390.png', await session.screenshot('stage-first-390.png'));
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
+describe('the bare embed (embed.html in a 720 x 480 iframe)', () => {
+  it(`shows K = ${FIRST_K} futures of ${stageModel.label} within 5 s, apart; the stage is at least 75% of the frame; "New futures" changes them`, async () => {
+    const session = await openBrowser({ viewport: { width: 900, height: 700 } });
+    try {
+      const { page } = session;
+      const host = `${new URL(baseUrl).origin}/elsewhere/embed-host.html`;
+      await page.route(host, (route) => route.fulfill({ status: 200, contentType: 'text/html',
+        body: `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>host</title></head><body style="margin:0">`
+          + `<iframe id="f" src="${baseUrl}embed.html" width="720" height="480" style="border:0; display:block"></iframe></body></html>` }));
+      await page.goto(host);
+      const frame = page.frame({ url: /embed\.html/ })!;
+      await frame.waitForSelector('motion-futures[data-predict-status="done"]', { state: 'attached', timeout: 120_000 });
+      const widget = frame.locator('motion-futures');
+      expect(await widget.getAttribute('data-prediction-model')).toBe(stageModel.id);
+      expect(await widget.getAttribute('data-prediction-k')).toBe(String(FIRST_K));
+      const shownAt = await frame.evaluate(() => performance.getEntriesByName('mf:prediction-shown')[0]?.startTime ?? Infinity);
+      expect(shownAt, 'ms from the embed\'s navigation to its futures').toBeLessThanOrEqual(FIRST_FUTURES_MS);
+      const pairs = await pairDistances(frame);
+      const stage = (await frame.locator('#viewer').boundingBox())!;
+      expect(stage.height / 480, 'the stage\'s share of the frame height').toBeGreaterThanOrEqual(0.75);
+      // no text refers to what the minimal embed does not show
+      const visibleText = await frame.evaluate(() => {
+        const root = document.querySelector('motion-futures')!.shadowRoot!;
+        const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
+        const out: string[] = [];
+        for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+          const parent = n.parentElement!;
+          const r = parent.getBoundingClientRect();
+          if (r.width > 1 && r.height > 1 && parent.checkVisibility()) out.push(n.textContent ?? '');
+        }
+        return out.join(' ');
+      });
+      expect(visibleText).not.toMatch(/\bin the list\b|\bPredict\b.*button|the panel|Samples \(K\)/);
+      await frame.evaluate((n) => { const p = document.querySelector('motion-futures')!.app!.player; p.pause(); p.seek(n + 12); }, N);
+      await settle(page);
+      await writeFile('/tmp/stage-embed-720.png', await session.screenshot('stage-embed-720.png', page.locator('#f')));
+      const before = await futures(frame);
+      await frame.getByTestId('new-futures').click();
+      await frame.waitForFunction((b) => {
+        const p = document.querySelector('motion-futures')!.app!.predictor.last?.prediction;
+        if (!p) return false;
+        const bytes = new Uint8Array(p.futures.buffer, p.futures.byteOffset, p.futures.byteLength);
+        let h = 2166136261;
+        for (const x of bytes) { h ^= x; h = Math.imul(h, 16777619) >>> 0; }
+        return `${p.k}:${Array.from(p.lengths).join(',')}:${h.toString(16)}` !== b;
+      }, before, { timeout: 60_000 });
+      expect(session.problems).toEqual(NO_PROBLEMS);
+      expect(Math.min(...pairs), 'the closest pair of the first futures (m)').toBeGreaterThanOrEqual(MIN_PAIR_M);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
+describe('what lies over the stage never moves it', () => {
+  let session: BrowserSession;
+  let page: Page;
+  const stageBox = () => page.locator('#viewer').boundingBox();
+
+  beforeAll(async () => {
+    session = await openBrowser({ viewport: { width: 1280, height: 860 } });
+    page = session.page;
+    await page.goto(baseUrl);
+    await predicted(page);
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it('a bad BVH file is one sentence on the stage, with the details behind a toggle', async () => {
+    const before = await stageBox();
+    const joints = Array.from({ length: 40 }, (_, i) => `  JOINT Strange_${i}\n  {\n    OFFSET 0 1 0\n    CHANNELS 3 Zrotation Xrotation Yrotation\n    End Site\n    {\n      OFFSET 0 1 0\n    }\n  }`).join('\n');
+    const bvh = `HIERARCHY\nROOT Blob\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n${joints}\n}\nMOTION\nFrames: 40\nFrame Time: 0.0333333\n${Array.from({ length: 40 }, () => Array(6 + 40 * 3).fill('0').join(' ')).join('\n')}\n`;
+    await page.evaluate((text) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([text], 'strange.bvh', { type: 'application/octet-stream' }));
+      const host = document.querySelector('motion-futures')!;
+      host.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }, bvh);
+    const message = page.locator('.message-error').first();
+    await message.waitFor();
+    const summary = (await message.locator('.message-text').textContent())!;
+    expect(summary.length).toBeLessThanOrEqual(121);
+    expect(summary).toMatch(/^Could not import: strange\.bvh/);
+    expect((await message.locator('.message-text').boundingBox())!.height).toBeLessThan(30); // one line
+    expect(await message.locator('.message-details').count()).toBe(1);
+    await message.locator('.message-details summary').click();
+    expect(await message.locator('.message-details p').textContent()).toMatch(/Strange_|joint/);
+    expect(await stageBox()).toEqual(before);
+    await page.screenshot({ path: '/tmp/stage-bad-bvh.png' });
+    session.resetProblems();
+  });
+
+  it('a history outside the training range: one sentence, details behind a toggle, the futures still shown and marked', async () => {
+    const before = await stageBox();
+    await page.evaluate(() => {
+      const app = window.motionFutures!;
+      const p = app.predictor.last!.prediction;
+      const cutAt = Math.max(1, Math.floor(p.lengths[1] / 2));
+      app.predictor.present({
+        ...p,
+        lengths: Int32Array.from(p.lengths, (l, i) => (i === 1 ? cutAt : l)),
+        samples: p.samples.map((s, i) => (i === 1
+          ? { ...s, length: cutAt, cut: { frame: cutAt - 1, reason: 'cut: out of bounds' as const, detail: 'test: a joint 9 m from the root' } }
+          : { ...s, cut: undefined })),
+        warnings: [{ quantity: 'root height', value: 1.8, min: 0.7, max: 1.17, unit: 'm', message: 'The root is higher than in any training window.' }],
+      });
+    });
+    const notice = page.getByTestId('range-notice');
+    await notice.waitFor();
+    expect(await notice.locator('.range-notice-text').textContent()).toMatch(/^Out of range: .*root height.*shown anyway\.$/);
+    await notice.locator('summary').click();
+    expect(await notice.locator('li[data-quantity="root height"]').textContent()).toMatch(/1\.80 m; training range 0\.70–1\.17 m/);
+    expect(await stageBox()).toEqual(before);
+    expect(await page.evaluate(() => document.body.dataset.predictionRange)).toBe('out');
+    expect(await page.getByTestId('stage-status').textContent()).toMatch(/Out of the training range/);
+    // the cut sample: its list row and its scrubber mark say "cut", apart from Eq. 8's stop
+    expect(await page.locator('.sample-button[data-sample="1"]').textContent()).toMatch(/cut \(out of bounds\)/);
+    expect(await page.getByTestId('scrubber-marks').locator('.scrubber-cut').count()).toBe(1);
+    expect(await page.getByTestId('scrubber-marks').locator('.scrubber-cut').getAttribute('data-sample')).toBe('1');
+    expect(await page.locator('.figure-label[data-sample="1"]').textContent()).toMatch(/cut/);
+    await page.screenshot({ path: '/tmp/stage-out-of-range.png' });
+  });
+});
