@@ -20,6 +20,7 @@ from .vectors_lcp import lcp_e2e_cases, lcp_record, lcp_vector
 from .vectors_asf import asf_vector
 from .vectors_guard import bones_vector, envelope_vector, guard_vector
 from .vectors_metrics import metrics_vector
+from .vectors_readout import readout_vector
 from .vectors_record import record
 from .vectors_retarget import retarget_vector
 from .vectors_wat import dct_smoothness_vector, variance_stop_vector, wat_e2e_cases, wat_record
@@ -47,7 +48,8 @@ def facing_vector() -> dict:
     from .data.clip_json import read_clip
     from .paths import CLIPS_DIR
     cases = []
-    for name, start in [("walker_turn_left1", 3), ("spin", 40), ("cartwheel", 20)]:
+    # a travelling, turning walk; a spin; a held-out salsa take (the root channel's round trip on all)
+    for name, start in [("deepmimic_walker_turn_left1", 3), ("deepmimic_spin", 40), ("cmu_61_04", 20)]:
         window = read_clip(CLIPS_DIR / f"{name}.json").positions[start:start + 12].round(7)
         out, placement = canonicalise(window, at_frame=9, skeleton=SKELETON)
         cases.append({"clip": name, "start": start, "at_frame": 9, "window": window.tolist(),
@@ -65,7 +67,7 @@ def direct_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:
     from .sample.request import Request
     cases = []
     n = entry["params"]["history_frames"]
-    for clip_name, start in [("walker_walk_forward", 3), ("spin", 90)]:
+    for clip_name, start in [(HELD_OUT_WALK, 3), (HELD_OUT_DANCE, 90)]:
         history = read_clip(CLIPS_DIR / f"{clip_name}.json").positions[start:start + n]
         req = Request(k=1, seed=7, horizon_frames=entry["params"]["future_frames"] + 15)
         cases.append(record(entry, clip_name, start, history, req, predictor.predict(history, req)))
@@ -85,6 +87,8 @@ E2E_CASES: dict[str, Callable[[dict, object, float], list[dict]]] = {
 E2E_RECORD = {"zero_velocity": record, "regression": record, "wat": wat_record, "wat_transformer": wat_record,
               "lcp_vae": lcp_record, "keyposes": keyposes_record}
 E2E_MARGIN = 1e-3
+# Held-out takes (people no model trained on) for the end-to-end cases: a walk and a ballet dance.
+HELD_OUT_WALK, HELD_OUT_DANCE, HELD_OUT_SALSA = "cmu_10_04", "cmu_49_11", "cmu_61_04"
 E2E_TEXT = ("TypeScript predictors must reproduce these: lengths, segments, labels and marks exactly, every float "
             "within the model's tolerance. Cases keep margins of at least `margin` to any decision threshold, so a "
             "last-bit difference cannot flip a decision; checks replay the cases (history, request, seed) and never "
@@ -145,6 +149,7 @@ FAMILIES: dict[str, Callable[[], dict]] = {
     "bones": _op_family(bones_vector),
     "envelope": _op_family(envelope_vector),
     "guard": _op_family(guard_vector),
+    "readout": readout_vector,
     "e2e": e2e_vector,
 }
 

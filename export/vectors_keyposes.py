@@ -23,17 +23,18 @@ def _window(name: str, start: int, frames: int) -> np.ndarray:
 
 def keyposes_vector() -> dict:
     extraction = []
-    for name, start, frames, threshold in [("walker_walk_forward", 0, 30, 0.3), ("spin", 90, 30, 0.3),
-                                           ("cartwheel", 10, 40, 0.3), ("kick", 0, 46, 0.15), ("backflip", 0, 52, 0.5)]:
+    for name, start, frames, threshold in [("deepmimic_walker_walk_forward", 0, 30, 0.3), ("deepmimic_spin", 90, 30, 0.3),
+                                           ("deepmimic_cartwheel", 10, 40, 0.3), ("deepmimic_kick", 0, 46, 0.15),
+                                           ("deepmimic_backflip", 0, 52, 0.5)]:
         pos = _window(name, start, frames)
         extraction.append({"clip": name, "start": start, "threshold": threshold, "positions": pos.tolist(),
                            "keyposes": kp.extract(pos, threshold),
                            "errors": kp.frame_errors(pos, 0, len(pos) - 1).tolist()})
 
     # Centres: every keypose of two clips, each facing +z; values: keyposes of a third clip.
-    centres = face_forward(np.concatenate([_window("walk", 0, 38)[kp.extract(_window("walk", 0, 38), 0.3)],
-                                           _window("kick", 0, 46)[kp.extract(_window("kick", 0, 46), 0.3)]]))
-    run = _window("run", 0, 24)
+    walk, kick = _window("deepmimic_walk", 0, 38), _window("deepmimic_kick", 0, 46)
+    centres = face_forward(np.concatenate([walk[kp.extract(walk, 0.3)], kick[kp.extract(kick, 0.3)]]))
+    run = _window("deepmimic_run", 0, 24)
     raw = run[kp.extract(run, 0.2)]
     values = face_forward(raw)
     labels, margins = kp.nearest_centre(values, centres)
@@ -72,9 +73,9 @@ def keyposes_vector() -> dict:
 
 
 # (clip, first history frame, horizon, controls) for the end-to-end vector.
-E2E_CASES = [("walker_walk_forward", 3, 150, {"temperature": 0.3, "refine": True}),
-             ("spin", 90, 45, {"temperature": 0.5, "refine": False}),
-             ("walker_turn_left0", 0, 45, {"temperature": 0.3, "refine": False})]
+E2E_CASES = [("cmu_10_04", 3, 150, {"temperature": 0.3, "refine": True}),
+             ("cmu_49_11", 90, 45, {"temperature": 0.5, "refine": False}),
+             ("cmu_61_04", 0, 45, {"temperature": 0.3, "refine": False})]
 
 
 def keyposes_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:

@@ -41,9 +41,9 @@ def lcp_vector() -> dict:
 
 
 # (clip, start, K, seed, horizon frames or None for the control's default, controls)
-E2E_CASES = [("walker_walk_forward", 3, 4, 7, 75, {"sigma_scale": 1.5}),   # 75 > 60: one recursive call
-             ("spin", 90, 4, 7, 75, {}),
-             ("walker_turn_left1", 5, 10, 3, None, {"sigma_scale": 0.5})]
+E2E_CASES = [("cmu_10_04", 3, 4, 7, 75, {"sigma_scale": 1.5}),   # 75 > 60: one recursive call
+             ("cmu_49_11", 90, 4, 7, 75, {}),
+             ("cmu_61_04", 5, 10, 3, None, {"sigma_scale": 0.5})]
 
 
 def lcp_e2e_cases(entry: dict, predictor) -> list[dict]:

@@ -62,7 +62,7 @@ def readout_vector(models_dir=None, clips_dir=None) -> dict:
     from .paths import CLIPS_DIR, MODELS_DIR
     from .sample.predictor import load_predictor
     from .sample.request import Request
-    from .vectors_record import float32_list
+    from .tolerance import about, float32_floor, float_gap
 
     models_dir, clips_dir = models_dir or MODELS_DIR, clips_dir or CLIPS_DIR
     manifest = read_manifest(models_dir / "manifest.json")
@@ -90,22 +90,39 @@ def readout_vector(models_dir=None, clips_dir=None) -> dict:
                 break
         else:
             raise ValueError(f"no seed gives {clip['name']}@{start} stop margins of at least {MARGIN}")
-        futures = np.asarray(pred.futures, dtype=np.float32)
-        cases.append({
-            "model": entry["id"], "model_hash": entry["hash"], "clip": clip["name"], "start": start,
-            "horizon_frames": horizon, "covers_t_max": horizon == t_max,
-            "history": float32_list(history), "truth": float32_list(truth), "request": req.to_json(),
-            "lengths": [int(x) for x in pred.lengths], "min_margin": min(pred.margins) if pred.margins else None,
-            "root_relative": _errors(futures, truth, root_relative=True),
-            "world": _errors(futures, truth, root_relative=False),
-        })
+        cases.append(readout_record(entry, clip["name"], start, horizon, horizon == t_max, history, truth, req, pred))
+    wide = load_predictor(entry["id"], models_dir, precision="float64")
+    gap = max(max(float_gap(c, replay(c, wide, entry)), float32_floor(c)) for c in cases)
     short = [c for c in cases if not c["covers_t_max"]]
-    return {"about": (
+    return {"about": about(
         f"the stage's read-out for {entry['label']} ({entry['id']}): test-split histories (the clip index's default "
         "first), the Python predictor's K futures with horizon_frames fixed to the ground truth used, and "
         "export/eval/metrics.py's best-of-K and per-sample ADE and FDE (whole-pose L2; root-relative and world frame, "
         "futures cut to the truth). Lengths exactly; the ADE/FDE floats within this file's tolerance plus the e2e "
         "vector's tolerance for the model (the futures come from native onnxruntime here, from wasm in the browser). "
         + (f"{len(short)} of {len(cases)} windows hold less than T_max = {t_max} frames of ground truth "
-           "(horizon_frames says how many they hold)." if short else f"Every window holds T_max = {t_max} frames.")),
-        "cases": cases}
+           "(horizon_frames says how many they hold)." if short else f"Every window holds T_max = {t_max} frames."),
+        {entry["id"]: gap}), "cases": cases}
+
+
+def readout_record(entry: dict, clip: str, start: int, horizon: int, covers: bool, history: np.ndarray,
+                   truth: np.ndarray, req, pred) -> dict:
+    """What a read-out case stores (also what a replay of it is compared on)."""
+    from .vectors_record import float32_list
+    futures = np.asarray(pred.futures, dtype=np.float32)
+    return {"model": entry["id"], "model_hash": entry["hash"], "clip": clip, "start": start,
+            "horizon_frames": horizon, "covers_t_max": covers,
+            "history": float32_list(history), "truth": float32_list(truth), "request": req.to_json(),
+            "lengths": [int(x) for x in pred.lengths], "min_margin": min(pred.margins) if pred.margins else None,
+            "root_relative": _errors(futures, truth, root_relative=True),
+            "world": _errors(futures, truth, root_relative=False)}
+
+
+def replay(case: dict, predictor, entry: dict) -> dict:
+    """The committed case's history and request through this predictor (never re-selected)."""
+    from .sample.request import Request
+    history = np.asarray(case["history"], dtype=np.float32)
+    truth = np.asarray(case["truth"], dtype=np.float32)
+    req = Request.from_json(case["request"])
+    return readout_record(entry, case["clip"], case["start"], case["horizon_frames"], case["covers_t_max"], history,
+                          truth, req, predictor.predict(history, req))

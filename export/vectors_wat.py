@@ -17,7 +17,7 @@ def _clip(name: str) -> np.ndarray:
 
 def dct_smoothness_vector() -> dict:
     rng = np.random.default_rng(5)
-    walk, backflip, punch = _clip("walk"), _clip("backflip"), _clip("punch")
+    walk, backflip, punch = _clip("deepmimic_walk"), _clip("deepmimic_backflip"), _clip("deepmimic_punch")
     cases = [
         ("walk, real motion", walk[0:10], walk[10:20], 5),
         ("backflip, real motion", backflip[20:30], backflip[30:40], 5),
@@ -33,7 +33,7 @@ def dct_smoothness_vector() -> dict:
 
 
 def variance_stop_vector() -> dict:
-    walk, kick = _clip("walk"), _clip("kick")
+    walk, kick = _clip("deepmimic_walk"), _clip("deepmimic_kick")
     held = np.concatenate([walk[:30], walk[29:30].repeat(20, 0)])           # moves 30 frames, then holds
     settles = np.concatenate([kick[:40], kick[39:40].repeat(10, 0)])
     cases = [
@@ -54,9 +54,9 @@ def variance_stop_vector() -> dict:
             "cases": out}
 
 
-# (clip, first history frame, action sequence): a walker test history into three actions, and a
-# test-tail history of spin into one.
-E2E_CASES = [("walker_walk_forward", 3, ["walk", "punch", "jump"]), ("spin", 90, ["spin"])]
+# (clip, first history frame, action sequence): a held-out walk into three actions, and a held-out
+# ballet take continued as its own action.
+E2E_CASES = [("cmu_10_04", 3, ["walk", "punch", "jump"]), ("cmu_49_11", 90, ["dance_ballet_modern"])]
 
 
 def wat_e2e_cases(entry: dict, predictor, margin: float, sequences=None) -> list[dict]:

@@ -13,7 +13,8 @@ MAX_RATIO = 4.0
 FIRST_PREDICTION_MS = 2500.0
 FRAME_GAP_MS = 50.0
 ONNX_TOTAL_GZ = 2e6
-DIST_GZ = 6e6
+DIST_GZ = 6e6          # dist/ without the served clips
+CLIPS_GZ = 1.5e6       # the served clips (issue 17: their own measured budget)
 
 
 def spread(values: list[float]) -> dict:
@@ -94,8 +95,11 @@ def targets(native: dict, browser: dict, sizes: list[dict], dist: dict, cases: l
         items.append((f"lazy: opening {n['model']} fetched other models' files {other}", None, not other))
     out.append(_target("served ONNX files: each within its cap, together, lazily per model",
                        f"cap per model; < {ONNX_TOTAL_GZ / 1e6:.0f} MB gz together", items))
-    out.append(_target("dist/ gzipped", f"< {DIST_GZ / 1e6:.0f} MB", [("dist/", dist["gzip_bytes"] / 1e6,
-                                                                      dist["gzip_bytes"] < DIST_GZ)]))
+    other = dist.get("other_gzip_bytes", dist["gzip_bytes"])
+    clips = dist.get("clips_gzip_bytes", 0)
+    out.append(_target("dist/ gzipped", f"< {DIST_GZ / 1e6:.0f} MB without the clips; clips < {CLIPS_GZ / 1e6:.1f} MB",
+                       [("dist/ without clips/", other / 1e6, other < DIST_GZ),
+                        ("clips/", clips / 1e6, clips < CLIPS_GZ)]))
     return out
 
 

@@ -55,7 +55,7 @@ describe('how it works', () => {
     expect(await loss()).toBeLessThan(before);
     // another pair of clips gives another loss
     const l0 = await text(page, 'dct-loss');
-    await page.locator('#dct-to').selectOption('jump');
+    await page.locator('#dct-to').selectOption('deepmimic_jump');
     await expect.poll(() => text(page, 'dct-loss')).not.toBe(l0);
   });
 

@@ -16,6 +16,7 @@ from export.rng import Prng
 from export.sample.predictor import load_predictor
 from export.tolerance import derive, first_difference, tolerance_of
 from export.vectors import FAMILIES, render, replay
+from export.vectors_readout import replay as replay_readout
 
 
 def test_committed_files_validate():
@@ -65,7 +66,7 @@ def test_unreadable_and_broken_json(tmp_path):
         load_json(tmp_path / "broken.json", "clip")
 
 
-OP_FAMILIES = sorted(set(FAMILIES) - {"e2e"})
+OP_FAMILIES = sorted(set(FAMILIES) - {"e2e", "readout"})   # the model families replay their cases
 
 
 def _committed(name: str) -> dict:
@@ -85,17 +86,23 @@ def e2e():
     return _committed("e2e")
 
 
-def _replay_all(doc: dict, models_dir=MODELS_DIR) -> dict[str, str | None]:
-    """Every committed e2e case replayed (its history, request and seed; never re-selected): the
-    first difference per model, or None."""
+# The families computed by the served models: their cases are replayed, never selected again.
+REPLAY = {"e2e": replay, "readout": replay_readout}
+
+
+def _replay_all(doc: dict, models_dir=MODELS_DIR, family: str = "e2e") -> dict[str, str | None]:
+    """Every committed case of a model family replayed (its history, request and seed; never
+    re-selected): the first difference per model it has cases for, or None."""
     manifest = read_manifest(models_dir / "manifest.json")
     out = {}
     for entry in manifest["models"]:
+        cases = [c for c in doc["cases"] if c["model"] == entry["id"]]
+        if not cases:
+            continue
         predictor = load_predictor(entry["id"], models_dir)
         tol = tolerance_of(doc, entry["id"])
-        cases = [c for c in doc["cases"] if c["model"] == entry["id"]]
         out[entry["id"]] = next((d for c in cases if (d := first_difference(
-            c, replay(c, predictor, entry), tol, f"e2e/{entry['id']}/{c['clip']}@{c['start']}"))), None)
+            c, REPLAY[family](c, predictor, entry), tol, f"{family}/{entry['id']}/{c['clip']}@{c['start']}"))), None)
     return out
 
 
@@ -103,6 +110,12 @@ def test_committed_e2e_cases_replay_on_this_code(e2e):
     assert {c["model"] for c in e2e["cases"]} == {m["id"] for m in read_manifest(MODELS_DIR / "manifest.json")["models"]}
     diffs = {m: d for m, d in _replay_all(e2e).items() if d}
     assert not diffs, f"run `python -m export vectors`: {diffs}"
+
+
+def test_committed_readout_cases_replay_on_this_code():
+    doc = _committed("readout")
+    diffs = {m: d for m, d in _replay_all(doc, family="readout").items() if d}
+    assert doc["cases"] and not diffs, f"run `python -m export vectors`: {diffs}"
 
 
 def test_every_tolerance_is_derived_from_its_gap_and_within_10_to_100_times_it():
@@ -186,6 +199,10 @@ def test_a_1e_3_change_of_any_graphs_largest_weight_fails_the_e2e_check(e2e, tmp
             diff = _replay_all({**e2e, "cases": [c for c in e2e["cases"] if c["model"] == entry["id"]]},
                                models)[entry["id"]]
             assert diff is not None, f"{entry['id']}.{role}: scaling {name} by 1 + 1e-3 went unnoticed"
+            readout = _committed("readout")
+            if any(c["model"] == entry["id"] for c in readout["cases"]):
+                diff = _replay_all(readout, models, "readout")[entry["id"]]
+                assert diff is not None, f"readout/{entry['id']}.{role}: scaling {name} by 1 + 1e-3 went unnoticed"
             caught.append(f"{entry['id']}.{role}")
     assert weightless == ["zero-velocity.predict"]     # it copies the last pose: no weight to change
     assert len(caught) == sum(len(e["graphs"]) for e in manifest["models"]) - 1

@@ -19,19 +19,21 @@ describe('contract validation in TypeScript', () => {
   });
 
   it('a clip with NaN names the file and the problem', () => {
-    const text = read('walk.json').replace('[[0,0.847532,0]', '[[0,NaN,0]');
+    const raw = read('deepmimic_walk.json');
+    const at = raw.indexOf('"positions": [\n[[') + '"positions": [\n[['.length;
+    const text = `${raw.slice(0, at)}NaN${raw.slice(raw.indexOf(',', at))}`;
     expect(() => parseJson(text, 'clips/walk.json')).toThrow(ContractError);
     expect(() => parseJson(text, 'clips/walk.json')).toThrow(/clips\/walk\.json: not valid JSON \(NaN/);
   });
 
   it('a clip with a null coordinate names the field', () => {
-    const doc = JSON.parse(read('walk.json'));
+    const doc = JSON.parse(read('deepmimic_walk.json'));
     doc.positions[3][5][1] = null;
     expect(() => validate(doc, 'clip', 'clips/walk.json')).toThrow(/clips\/walk\.json: field positions\/3\/5\/1: must be number/);
   });
 
   it('a clip whose frame has the wrong joint count names the frame', () => {
-    const doc = JSON.parse(read('walk.json'));
+    const doc = JSON.parse(read('deepmimic_walk.json'));
     doc.positions[7].pop();
     expect(() => validate(doc, 'clip', 'walk.json')).toThrow(/walk\.json: field positions\/7: 17 joints, the skeleton has 18/);
   });

@@ -44,8 +44,8 @@ describe('DCT approximation (WAT Eq. 4)', () => {
 });
 
 describe('joining two clips', () => {
-  const walk = clip('walk');
-  const punch = clip('punch');
+  const walk = clip('deepmimic_walk');
+  const punch = clip('deepmimic_punch');
   const l = 10;
   const z = joinWindows(clipWindow(walk, walk.frames - l, l), clipWindow(punch, 0, l), l, walk.skeleton);
 

@@ -58,7 +58,7 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
 
   it('K = 10 futures from a test-split history: differing label sequences, no jump, ghosts at the marks', async () => {
     const n = entry!.params.history_frames;
-    const history = clipHistory('walker_turn_right0', 2, n);
+    const history = clipHistory('cmu_49_11', 2, n);
     const pred = await predictor().predict(history, { k: 10, seed: 3, controls: { temperature: 0.3, refine: true } });
     expect(pred.k).toBe(10);
     expect(pred.frames).toBe(150);
@@ -81,7 +81,7 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
   });
 
   it('the same seed gives the same futures; another seed other ones', async () => {
-    const history = clipHistory('walker_walk_forward', 0, entry!.params.history_frames);
+    const history = clipHistory('cmu_10_04', 0, entry!.params.history_frames);
     const p = predictor();
     const a = await p.predict(history, { k: 4, seed: 11, horizonFrames: 60, controls: { refine: false } });
     const b = await p.predict(history, { k: 4, seed: 11, horizonFrames: 60, controls: { refine: false } });
@@ -95,7 +95,7 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
     [{ temperature: -1 }, /Temperature must be between/],
     [{ refine: 1 }, /Refine must be true or false/],
   ])('bad control %o', async (controls, message) => {
-    const history = clipHistory('walker_walk_forward', 0, entry!.params.history_frames);
+    const history = clipHistory('cmu_10_04', 0, entry!.params.history_frames);
     const run = predictor().predict(history, { k: 2, seed: 0, controls: controls as Record<string, number | boolean> });
     await expect(run).rejects.toThrow(PredictError);
     await expect(predictor().predict(history, { k: 2, seed: 0, controls: controls as Record<string, number | boolean> })).rejects.toThrow(message);
@@ -103,7 +103,7 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
 
   it('a history without enough keyposes is rejected with the count and the threshold', async () => {
     const n = entry!.params.history_frames;
-    const still = clipHistory('walker_walk_forward', 0, 1);
+    const still = clipHistory('cmu_10_04', 0, 1);
     const positions = new Float32Array(n * J * 3);
     for (let f = 0; f < n; f++) positions.set(still.positions, f * J * 3);
     const run = predictor().predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 });
@@ -113,7 +113,7 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
   });
 
   it('a missing centres file names the file', async () => {
-    const history = clipHistory('walker_walk_forward', 0, entry!.params.history_frames);
+    const history = clipHistory('cmu_10_04', 0, entry!.params.history_frames);
     const missing = async (file: string) => { throw new Error(`models/${file} could not be loaded (HTTP 404)`); };
     await expect(predictor(missing).predict(history, { k: 2, seed: 0 })).rejects.toThrow(/keyposes\.centres\.json could not be loaded/);
   });

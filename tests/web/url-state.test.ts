@@ -126,7 +126,7 @@ describe('URL state round trip', () => {
 describe('links that do not fit this site say so', () => {
   const entry = served.models[0];
   const base: ShareState = {
-    version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'walker_walk_forward', start: 0, seed: 7,
+    version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'cmu_10_04', start: 0, seed: 7,
     controls: Object.fromEntries(entry.controls.map((c) => [c.id, c.default as ControlValue])),
   };
   const decode = (edit: (q: URLSearchParams) => void, siteVersion = '0.1.0') => {

@@ -13,7 +13,7 @@ const found = manifest.models.find((m) => m.method === 'wat');
 if (!found) throw new Error('public/models/manifest.json serves no WAT model: run `python -m export models --only wat-rnn`');
 const entry = found;
 const J = manifest.skeleton.joints.length;
-const clip = JSON.parse(readFileSync(new URL('../../public/clips/walker_walk_forward.json', import.meta.url), 'utf8')) as { positions: number[][][] };
+const clip = JSON.parse(readFileSync(new URL('../../public/clips/cmu_10_04.json', import.meta.url), 'utf8')) as { positions: number[][][] };
 const history = (frames: number, start = 3) => ({
   positions: Float32Array.from(clip.positions.slice(start, start + frames).flat(2)), frames, joints: J,
 });

@@ -1,6 +1,6 @@
 // <motion-futures>: the widget as a custom element, the one script a project page includes.
 //   <script type="module" src="SITE/assets/motion-futures.js"></script>
-//   <motion-futures model="regression-gru" clip="walker_walk_forward" seed="3" autoplay></motion-futures>
+//   <motion-futures model="regression-gru" clip="cmu_10_04" seed="3" autoplay></motion-futures>
 // Attributes are read once, when the element connects. With the `page` attribute the element is
 // the whole page (index.html, embed.html): the page URL overrides the attributes and is kept up
 // to date as a permalink, keys act with nothing focused, and the page works offline.

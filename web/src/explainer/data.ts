@@ -11,6 +11,10 @@ export interface ExplainerData {
   /** The site root URL, ending in '/'. */
   root: string;
   index: ClipIndex;
+  /** The first served clip of an action (e.g. the first-listed walk), or of any action when none. */
+  firstOf(action: string): string;
+  /** The clip the site opens on (the index's default held-out take), else the first test clip. */
+  defaultClip(): string;
   manifest: Manifest | null;
   /** Why the manifest did not load (null when it did). */
   manifestProblem: string | null;
@@ -46,6 +50,8 @@ export async function loadExplainerData(root: string): Promise<ExplainerData> {
       }
       return c;
     },
+    firstOf: (action) => (index.clips.find((c) => c.action === action) ?? index.clips[0]).name,
+    defaultClip: () => index.default?.clip ?? (index.clips.find((c) => c.role === 'test') ?? index.clips[0]).name,
     model: (method) => manifest?.models.find((m) => m.method === method) ?? null,
     graphs() {
       if (!manifest) throw new Error(`the models did not load: ${manifestProblem}`);

@@ -19,7 +19,7 @@ export async function mountDctFigure(host: HTMLElement, data: ExplainerData): Pr
   const smooth = wat?.params.smoothness;
   // WAT's supplement: L = 10, M = 5; the served model's own values when it is there.
   const l = smooth?.l ?? 10;
-  const state = { a: 'walk', b: 'punch', joint: 'right_wrist', axis: 1, m: smooth?.m ?? 5 };
+  const state = { a: data.firstOf('walk'), b: data.firstOf('punch'), joint: 'right_wrist', axis: 1, m: smooth?.m ?? 5 };
   const f = figureShell(host, 'fig-dct', '1. A smooth transition is one the first DCT bases can draw',
     [`WAT trains transitions between actions it never saw joined. It joins the last L = ${l} frames of one action to the `,
       `first ${l} of another and asks the predicted frames in between to be smooth: the ${2 * l} poses Z should be close to `,

@@ -38,8 +38,8 @@ export async function mountPriorFigure(host: HTMLElement, data: ExplainerData): 
   const tests = data.index.clips.filter((c) => c.frames >= n && (c.role === 'test' || c.test.some(([a, b]) => b - a >= n)));
   const opts = tests.map((c) => ({ value: c.name, text: pretty(c.name) }));
   const pick = (name: string, fallback: number) => (tests.some((c) => c.name === name) ? name : tests[fallback]?.name ?? '');
-  const histA = select({ id: 'prior-a', label: 'History A', options: opts, value: pick('walker_walk_forward', 0), onChange: () => { void load(); } });
-  const histB = select({ id: 'prior-b', label: 'History B', options: opts, value: pick('getup_faceup', 1), onChange: () => { void load(); } });
+  const histA = select({ id: 'prior-a', label: 'History A', options: opts, value: pick(data.defaultClip(), 0), onChange: () => { void load(); } });
+  const histB = select({ id: 'prior-b', label: 'History B', options: opts, value: pick(tests.find((c) => c.action !== tests.find((t) => t.name === data.defaultClip())?.action)?.name ?? '', 1), onChange: () => { void load(); } });
   let scale = 1;
   const s = slider({ id: 'prior-s', label: 'Sigma scale s', min: 0, max: 2, step: 0.05, value: 1, format: (v) => `s = ${v.toFixed(2)}`,
     onInput: (v) => { scale = v; draw(); } });

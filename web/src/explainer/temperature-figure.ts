@@ -40,7 +40,7 @@ export async function mountTemperatureFigure(host: HTMLElement, data: ExplainerD
   const n = p.history_frames;
   const tests = data.index.clips.filter((c) => c.test.some(([a, b]) => b - a >= n) || (c.role === 'test' && c.frames >= n));
   const clip = select({ id: 'temp-clip', label: 'History (a test clip)', options: tests.map((c) => ({ value: c.name, text: pretty(c.name) })),
-    value: tests.some((c) => c.name === 'walker_walk_forward') ? 'walker_walk_forward' : tests[0]?.name ?? '', onChange: () => { void observe(); } });
+    value: tests.some((c) => c.name === data.defaultClip()) ? data.defaultClip() : tests[0]?.name ?? '', onChange: () => { void observe(); } });
   let temperature = Number(spec?.default ?? 0.3);
   const t = slider({ id: 'temp-t', label: 'Temperature T', min: spec?.min ?? 0.05, max: spec?.max ?? 1.5, step: spec?.step ?? 0.05, value: temperature,
     format: (v) => `T = ${v.toFixed(2)}`, onInput: (v) => { temperature = v; drawBars(); schedule(); } });

@@ -132,7 +132,7 @@ async function watCurves(data: ExplainerData, wat: ModelEntry, action: string, s
   const j = skeleton.joints.length;
   const n = p.history_frames;
   const stride = j * 3;
-  const clip = await data.clip('walker_walk_forward');
+  const clip = await data.clip(data.defaultClip());
   const { canonical } = toCanonical(clipWindow(clip, 0, n), n, skeleton);
   const history = new Float32Array(K * n * stride);
   const onehot = new Float32Array(K * p.actions.length);

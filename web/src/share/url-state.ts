@@ -32,6 +32,15 @@ export interface ShareState {
   source?: HistorySource;
 }
 
+/** The model the page opens on, and what a link naming no model (or an unknown one) shows: WAT
+ *  (action-conditioned, stochastic, variable length), else the first model that draws K samples,
+ *  else the first one. */
+export function stageModel(manifest: Manifest): ModelEntry {
+  return manifest.models.find((m) => m.method === 'wat')
+    ?? manifest.models.find((m) => m.controls.some((c) => c.id === 'k'))
+    ?? manifest.models[0];
+}
+
 /** What a link or an embed's attributes ask for; anything absent keeps the page's default. */
 export interface LinkState {
   version?: string;
@@ -195,9 +204,9 @@ export function decodeState(params: Iterable<[string, string]>, manifest: Manife
   if (!manifest.models.length) throw new UrlStateError('the manifest lists no models');
 
   const asked = q.get('model');
-  let entry = asked === undefined ? manifest.models[0] : manifest.models.find((m) => m.id === asked);
+  let entry = asked === undefined ? stageModel(manifest) : manifest.models.find((m) => m.id === asked);
   if (!entry) {
-    entry = manifest.models[0];
+    entry = stageModel(manifest);
     warn(`This link asks for the model '${asked}', which this site does not serve; showing ${entry.label} instead, so the futures differ from the linked ones.`);
   }
   checkIds(entry);

@@ -1,7 +1,7 @@
 // One motion-futures instance: wires viewer, player, panels, keyboard and sharing into the parts
 // a widget gives it (web/src/embed/widget.ts). The main page, embed.html and every
 // <motion-futures> on a project page run this same code.
-import type { Manifest, ModelEntry } from '../contract/types';
+import type { Manifest } from '../contract/types';
 import { sharedClient, sharedManifest, newViewId } from '../embed/shared';
 import { EMBED_SCRIPT } from '../embed/site';
 import type { Motion } from '../motion/clip';
@@ -10,7 +10,7 @@ import { embedSnippet, iframeSnippet, permalink } from '../share/links';
 import { mountSharePanel, type Shareable } from '../share/share-panel';
 import {
   decodeState, encodeSearch, shortHash, unlinkableReason, UrlStateError, type HistorySource, type LinkState,
-  type Problem, type ShareState,
+  type Problem, type ShareState, stageModel,
 } from '../share/url-state';
 import { SITE_VERSION } from '../share/version';
 import { olderRelease } from '../share/versions';
@@ -112,17 +112,11 @@ export interface App {
 
 /** The history clip shown first when the clip index names no default: a test clip, so the first
  *  futures come from unseen motion. */
-export const DEFAULT_CLIP = 'walker_walk_forward';
+export const DEFAULT_CLIP = 'deepmimic_walker_walk_forward';   // only when the index names no default
 /** K of the first view: few enough that side by side each sample stays readable. */
 export const FIRST_VIEW_K = 5;
+export { stageModel };
 
-/** The model the page opens on: WAT (action-conditioned, stochastic, variable length), else the first
- *  model that draws K samples, else the first one. */
-export function stageModel(manifest: Manifest): ModelEntry {
-  return manifest.models.find((m) => m.method === 'wat')
-    ?? manifest.models.find((m) => m.controls.some((c) => c.id === 'k'))
-    ?? manifest.models[0];
-}
 
 /**
  * What a link without a model opens on (the first view, and an embed without a model): the stage's
