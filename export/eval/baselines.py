@@ -89,3 +89,21 @@ def nearest_window(history: np.ndarray, train_histories: np.ndarray, train_futur
     channel starts from that frame, is turned back and moved onto the query's last root (facing.place)."""
     canonical, placement = canonicalise(np.asarray(history, dtype=np.float64), len(history) - 1, SKELETON)
     return place(np.asarray(train_futures)[nearest_index(canonical, train_histories)], placement)
+
+
+def nearest_indices(canonical_histories: np.ndarray, train_histories: np.ndarray, chunk: int = 256) -> np.ndarray:
+    """nearest_index for many queries at once [Q, N, J, 3] -> [Q]: the same distance (L2 over the whole
+    root-relative history), computed as |q|^2 + |t|^2 - 2 q.t in chunks of queries, so a bank of tens of
+    thousands of training windows is searched in one matrix product per chunk. Ties go to the first."""
+    q = facing_root_relative(np.asarray(canonical_histories, dtype=np.float64))
+    t = facing_root_relative(np.asarray(train_histories, dtype=np.float64))
+    if t.shape[1:] != q.shape[1:]:
+        raise ValueError(f"the training histories are {t.shape[1:]}, the queries {q.shape[1:]}")
+    q, t = q.reshape(len(q), -1), t.reshape(len(t), -1)
+    tt = (t * t).sum(1)
+    out = np.empty(len(q), dtype=np.int64)
+    for a in range(0, len(q), chunk):
+        part = q[a:a + chunk]
+        d = tt[None] - 2.0 * part @ t.T + (part * part).sum(1)[:, None]   # squared distances
+        out[a:a + chunk] = np.argmin(d, axis=1)
+    return out

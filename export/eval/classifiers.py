@@ -128,7 +128,11 @@ class Classifier:
     def classify(self, motions: list[np.ndarray], stride: int) -> tuple[np.ndarray, list[np.ndarray]]:
         """Class index per motion (scores averaged over its sliding snippets) and each motion's
         snippet features."""
-        cut = [snippets(m, self.frames, stride) for m in motions]
+        return self.classify_snippets([snippets(m, self.frames, stride) for m in motions])
+
+    def classify_snippets(self, cut: list[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        """classify() on motions already cut into snippets (one array per motion), so two classifiers
+        can share the cutting."""
         if any(len(c) == 0 for c in cut):
             raise ValueError(f"a motion is shorter than the classifier's {self.frames} frames")
         if not cut:
@@ -232,3 +236,59 @@ def snippet_accuracy(clf: Classifier, snips: np.ndarray, actions: list[str], bal
     if balanced:
         return float(np.mean([(pred[truth == c] == c).mean() for c in np.unique(truth)]))
     return float((pred == truth).mean())
+
+
+# --- choosing the classifier honestly (issue 18, item 5) ---------------------------------------------
+
+
+def action_accuracy(clf: Classifier, snips: np.ndarray, actions: list[str]) -> dict[str, dict]:
+    """Per true action: {"accuracy" (% of its snippets), "snippets"}; a snippet called NO_MOTION is wrong."""
+    if len(snips) == 0:
+        return {}
+    pred = clf.snippet_outputs(snips)[0].argmax(1)
+    out = {}
+    for a in sorted(set(actions)):
+        idx = [i for i, b in enumerate(actions) if b == a]
+        hit = [pred[i] < len(clf.actions) and clf.actions[pred[i]] == a for i in idx]
+        out[a] = {"accuracy": 100.0 * float(np.mean(hit)), "snippets": len(idx)}
+    return out
+
+
+def person_folds(clips: list[Clip]) -> list[tuple[str, list[Clip], list[Clip]]]:
+    """Leave-one-person-out inside the training people: (person, the others' clips, that person's clips).
+    A person is a fold only when another training person performs one of their actions: the score is on
+    those shared actions, since a classifier cannot know an action nobody else performs."""
+    train = [c for c in clips if c.split.role != "test"]
+    out = []
+    for person in sorted({str(c.subject) for c in train}):
+        others = [c for c in train if str(c.subject) != person]
+        known = {c.action for c in others}
+        mine = [c for c in train if str(c.subject) == person and c.action in known]
+        if mine:
+            out.append((person, others, mine))
+    return out
+
+
+def select_classifier(kind: str, clips: list[Clip], cfg: dict, cache_dir: Path | None = None) -> tuple[dict, dict]:
+    """The classifier config to train on all training people: the candidate of cfg["selection"] with the best
+    mean balanced accuracy over the person folds (ties: the first). Returns (config, report)."""
+    sel = cfg["selection"]
+    base = {k: v for k, v in cfg.items() if k != "selection"}
+    frames = int(base["snippet_frames"])
+    folds = person_folds(clips)
+    if not folds:
+        raise ValueError("no training person shares an action with another: leave-one-person-out cannot choose")
+    report = []
+    for cand in sel["candidates"]:
+        trial = dict(base, steps=int(sel["steps"]), **{k: v for k, v in cand.items() if k != "name"})
+        scores = {}
+        for person, others, mine in folds:
+            clf = train_classifier(kind, others, trial, int(base["seed"]), cache_dir=cache_dir)
+            x, acts, _ = split_snippets(mine, "train", frames, int(sel["stride"]))
+            scores[person] = 100.0 * snippet_accuracy(clf, x, acts, balanced=True)
+        report.append({"name": cand.get("name", str(cand)), "changes": {k: v for k, v in cand.items() if k != "name"},
+                       "score": float(np.mean(list(scores.values()))), "folds": scores})
+    best = max(range(len(report)), key=lambda i: (report[i]["score"], -i))
+    chosen = dict(base, **report[best]["changes"])
+    return chosen, {"candidates": report, "chosen": report[best]["name"], "people": [p for p, _, _ in folds],
+                    "steps": int(sel["steps"])}

@@ -1,8 +1,13 @@
 """The evaluation runner: every row of rows.py through every table of configs/eval.json.
 
-Models predict through the Python predictor (export/sample/predictor.py), the same code path
-the end-to-end vectors tie to the browser. Each (row, table) is run for every training seed
-× sampling seed; each run gives one value per metric, and a table cell is mean ± std over runs.
+Windows are cut from the clips' world-frame positions (heldout.cut_windows), the frames the predictors
+take and give: every row of a table sees the same windows, each model the last frames of its own history
+length, and the ground truth is the captured world frames after the history. Models predict through the
+Python predictor (export/sample/predictor.py), the code path the end-to-end vectors tie to the browser.
+
+Each (row, table) is run for every training seed x sampling seed. A run gives one value per item (a window,
+or a window and a requested action) and metric; a row's value is the mean over runs of the run's mean, its
+uncertainty the seed std over runs combined with a cluster bootstrap over takes (stats.py).
 """
 from __future__ import annotations
 
@@ -10,6 +15,7 @@ import importlib
 import json
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -18,71 +24,72 @@ import torch
 
 from ..config import load_config
 from ..data.clip import Clip
+from ..data.skeleton import SKELETON
 from ..data.sources import FPS
-from ..data.windows import windows
+from ..data.split import short_horizons
+from ..data.windows import windows as train_windows
 from ..manifest import read_manifest
 from ..methods import METHODS, method_for
+from ..ops.bones import bone_lengths
+from ..ops.facing import Placement, canonicalise, place, rotate_about_y
 from ..paths import CONFIGS_DIR, MODELS_DIR, RUNS_DIR
 from ..sample.predictor import PREDICTORS, predictor_for
 from ..sample.request import PredictError, Request
+from . import baselines as B
 from . import metrics as M
-from .classifiers import Classifier, snippet_accuracy, snippets, split_snippets, train_classifier
-from .fid import FeatureSpace
+from . import stats as S
+from .classifiers import (Classifier, action_accuracy, select_classifier, snippet_accuracy, snippets,
+                          split_snippets, train_classifier)
+from .fid import FeatureSpace, frechet
+from .heldout import HeldOutWindow, cut_windows
 from .rows import ROWS, Row
-from .stats import summarise
+from .variants import project_onto_history, with_rule
 
 SEEDS_DIR = RUNS_DIR / "seeds"
 
-# Columns: id -> (label, unit, better, needs ground truth). MPJPE in mm as Keyposes reports it;
-# WAT's pose-vector distances in metres.
-COLUMNS: dict[str, tuple[str, str, str, bool]] = {
-    "ade": ("ADE (best of K)", "m", "lower", True),
-    "ade_w": ("ADE after DTW", "m", "lower", True),
-    "mpjpe_1s_ave": ("MPJPE 1 s ave", "mm", "lower", True),
-    "mpjpe_1s_best": ("MPJPE 1 s best", "mm", "lower", True),
-    "mpjpe_h_ave": ("MPJPE horizon ave", "mm", "lower", True),
-    "mpjpe_h_best": ("MPJPE horizon best", "mm", "lower", True),
-    "div": ("Diversity", "m", "higher", False),
-    "div_w": ("Diversity after DTW", "m", "higher", False),
-    "acc_pose": ("Accuracy (pose GRU)", "%", "higher", False),     # mean over actions (balanced)
-    "acc_moac": ("Accuracy (MOAC)", "%", "higher", False),
-    "fid_tr": ("FID vs train", "", "lower", False),
-    "fid_te": ("FID vs test", "", "lower", False),
-    "pskl_gt_pred": ("PSKL gt→pred", "", "lower", False),
-    "pskl_pred_gt": ("PSKL pred→gt", "", "lower", False),
-    "smooth": ("Transition smoothness (Eq. 4)", "mm²", "lower", False),
-    "speed": ("Joint speed, last second", "m/s", "", False),
-    "length": ("Mean length", "frames", "", False),
-    "stopped": ("Segments stopped (Eq. 8)", "%", "", False),   # variable-length methods only
+
+@dataclass(frozen=True)
+class Column:
+    label: str
+    unit: str
+    better: str            # "lower", "higher" or ""
+    truth: bool = False    # needs frame-wise ground truth
+    balanced: bool = False  # mean over actions of each action's mean (recognition)
+    section: str = ""      # where the report shows it ("" = only in the JSON and the detail tables)
+
+
+# MPJPE in mm as Keyposes reports it; ADE/FDE/APD and WAT's pose-vector distances in metres.
+COLUMNS: dict[str, Column] = {
+    "ade": Column("ADE best of K (root-relative)", "m", "lower", True, section="accuracy"),
+    "fde": Column("FDE best of K (root-relative)", "m", "lower", True, section="accuracy"),
+    "ade_full": Column("ADE best of K (full positions)", "m", "lower", True, section="accuracy"),
+    "fde_full": Column("FDE best of K (full positions)", "m", "lower", True, section="accuracy"),
+    "mmade": Column("MMADE", "m", "lower", True, section="accuracy"),
+    "mmfde": Column("MMFDE", "m", "lower", True, section="accuracy"),
+    "mpjpe_h_best": Column("MPJPE at horizon, best", "mm", "lower", True, section="accuracy"),
+    "mpjpe_h_ave": Column("MPJPE at horizon, ave", "mm", "lower", True),
+    "mmade_half": Column("MMADE at half the threshold", "m", "lower", True),
+    "mmade_double": Column("MMADE at double the threshold", "m", "lower", True),
+    "mmfde_half": Column("MMFDE at half the threshold", "m", "lower", True),
+    "mmfde_double": Column("MMFDE at double the threshold", "m", "lower", True),
+    "apd": Column("APD (root-relative)", "m", "higher", section="diversity"),
+    "div": Column("Diversity (WAT Eq. 10)", "m", "higher", section="diversity"),
+    "div_w": Column("Diversity after DTW (Eq. 11)", "m", "higher", section="diversity"),
+    "acc_pose": Column("Accuracy (pose GRU)", "%", "higher", balanced=True, section="recognition"),
+    "acc_moac": Column("Accuracy (MOAC)", "%", "higher", balanced=True, section="recognition"),
+    "fid": Column("FID vs the captured futures", "", "lower", True, section="recognition"),
+    "smooth": Column("Eq. 4 as printed (squared)", "mm²", "lower", section="plausibility"),
+    "smooth_unsq": Column("Eq. 4 as the authors' code (unsquared)", "mm", "lower", section="plausibility"),
+    "bone": Column("Bone-length error", "%", "lower", section="plausibility"),
+    "foot": Column("Frames with a foot below the floor", "%", "lower", section="plausibility"),
+    "jump": Column("Smooth first frame", "%", "higher", section="plausibility"),
+    "cut": Column("Samples cut by the guard", "%", "lower", section="plausibility"),
+    "speed": Column("Joint speed, last second", "m/s", "", section="plausibility"),
+    "length": Column("Mean length", "frames", "", section="plausibility"),
+    "stopped": Column("Segments stopped (Eq. 8)", "%", "", section="plausibility"),
 }
-
-
-@dataclass
-class EvalWindow:
-    clip: str
-    action: str
-    history: np.ndarray            # [H, J, 3]
-    truth: np.ndarray | None       # [T, J, 3] when the table has frame-wise ground truth
-
-
-@dataclass
-class Sample:
-    """One prediction: K futures for one window and one requested action."""
-    window: EvalWindow
-    action: str
-    futures: np.ndarray            # [K, T, J, 3]
-    lengths: np.ndarray            # [K]
-    segments: list[list[dict]] = field(default_factory=list)
-
-
-@dataclass
-class ModelRun:
-    """A row's trained model at one training seed."""
-    seed: int
-    predictor: object
-    entry: dict
-    served: bool
-
+SET_LEVEL = ("fid",)                 # one value per run, not per item
+RECOGNITION = ("acc_pose", "acc_moac")
 
 TABLE_KEYS = ("id", "title", "about", "source", "history_frames", "horizon_frames", "stride", "truth")
 
@@ -97,43 +104,51 @@ def load_eval_config(path: str | Path | None = None) -> dict:
     except json.JSONDecodeError as e:
         raise ValueError(f"{path}: not valid JSON ({e})") from e
     for key in ("k", "training_seeds", "sampling_seeds", "noise_sigma", "classifier", "snippet_stride", "fid",
-                "length_bin_frames", "tables"):
+                "length_bin_frames", "bootstrap", "mmade", "nearest", "tables"):
         if key not in cfg:
             raise ValueError(f"{path}: evaluation config is missing '{key}'")
     for i, table in enumerate(cfg["tables"]):
         missing = [k for k in TABLE_KEYS if k not in table]
         if missing:
             raise ValueError(f"{path}: table {table.get('id', i)} is missing {missing}")
-        if table["source"] not in ("test", "walker", "train"):
-            raise ValueError(f"{path}: table {table['id']}: source must be test, walker or train, got {table['source']!r}")
-        if table["history_frames"] != "model" and not (isinstance(table["history_frames"], int) and table["history_frames"] > 0):
-            raise ValueError(f"{path}: table {table['id']}: history_frames must be a positive integer or \"model\"")
-        if table["history_frames"] == "model" and table["truth"]:
-            raise ValueError(f"{path}: table {table['id']}: a table with ground truth needs one history length")
+        if table["source"] not in ("test", "train"):
+            raise ValueError(f"{path}: table {table['id']}: source must be test (held-out people) or train, "
+                             f"got {table['source']!r}")
+        if not (isinstance(table["history_frames"], int) and table["history_frames"] > 0):
+            raise ValueError(f"{path}: table {table['id']}: history_frames must be a positive integer")
+        if table.get("context_frames", table["history_frames"]) < table["history_frames"]:
+            raise ValueError(f"{path}: table {table['id']}: context_frames must be at least history_frames")
     return cfg
 
 
-def per_row_history(table: dict) -> bool:
-    """A table without frame-wise ground truth may cut each row's windows with that model's own
-    history length ("history_frames": "model"), so models with long histories are not left out."""
-    return table["history_frames"] == "model"
+def table_windows(clips: list[Clip], table: dict) -> list[HeldOutWindow]:
+    """The table's windows, world frame: history (with up to context_frames of earlier frames) and, when the
+    table has ground truth, the horizon's captured frames after it; from the held-out people ("test") or the
+    training people ("train")."""
+    t = int(table["horizon_frames"]) if table["truth"] else 0
+    return cut_windows(clips, table["source"], int(table["history_frames"]), t, int(table["stride"]),
+                       table.get("context_frames"))
 
 
-def table_windows(clips: list[Clip], table: dict, history: int | None = None) -> list[EvalWindow]:
-    """The table's windows: history + horizon inside the test parts (or one frame past the history
-    when the table has no frame-wise ground truth), from the source the table names."""
-    h, t = int(history or table["history_frames"]), int(table["horizon_frames"])
-    part = "train" if table["source"] == "train" else "test"
-    chosen = [c for c in clips if table["source"] != "walker" or c.split.role == "test"]
-    length = h + (t if table["truth"] else 1)
-    out = []
-    for w in windows(chosen, part, length, h, stride=int(table["stride"])):
-        out.append(EvalWindow(w.clip, w.action, w.positions[:h],
-                              w.positions[h:h + t] if table["truth"] else None))
-    return out
+def requested_actions(table: dict, actions: list[str], window: int, own: str) -> list[str]:
+    """The window's own action, or (tables with "actions") a rotating subset of `actions_per_window` of
+    `actions`, so that every action is requested equally often over the windows."""
+    if not table.get("actions"):
+        return [own]
+    n = int(table.get("actions_per_window", len(actions)))
+    return [actions[(window * n + j) % len(actions)] for j in range(min(n, len(actions)))]
 
 
 # --- rows -----------------------------------------------------------------------------------
+
+@dataclass
+class ModelRun:
+    """A row's trained model at one training seed."""
+    seed: int
+    predictor: object
+    entry: dict
+    served: bool
+
 
 def served_configs() -> set[str]:
     return set(json.loads((CONFIGS_DIR / "site.json").read_text())["models"])
@@ -169,7 +184,7 @@ def load_row_models(row: Row, seeds: list[int], models_dir: Path, seeds_root: Pa
     if not method_for(cfg).trainable:
         seeds = seeds[:1]   # nothing is trained, so every training seed gives the same model
         notes.append("not trained: one model stands for every training seed")
-    runs, missing = [], []
+    runs, missing, broken = [], [], []
     for seed in seeds:
         served = seed == 0 and row.config in served_configs()
         directory = Path(models_dir) if served else seeds_root / cfg["id"] / f"seed{seed}"
@@ -181,11 +196,16 @@ def load_row_models(row: Row, seeds: list[int], models_dir: Path, seeds_root: Pa
         if entry is None:
             missing.append(seed)
             continue
-        runs.append(ModelRun(seed, predictor_for(entry, manifest, directory), entry, served))
+        try:
+            predictor = with_rule(predictor_for(entry, manifest, directory), row.extract)
+        except Exception as e:   # a stale export (other graph signature, missing file) must not stop the rest
+            broken.append(f"training seed {seed} does not load ({type(e).__name__}: {e})")
+            continue
+        runs.append(ModelRun(seed, predictor, entry, served))
     if missing:
         notes.append(f"training seeds {missing} not found (served seed 0 comes from `make models`, "
                      "the others from `make results`)")
-    return runs, notes
+    return runs, notes + broken
 
 
 def max_horizon(entry: dict) -> int:
@@ -202,187 +222,442 @@ def request_seed(sampling_seed: int, window: int, action: int) -> int:
     return (sampling_seed * 1_000_003 + window * 97 + action) % 2 ** 32
 
 
-def requested_actions(table: dict, actions: list[str], window: int, own: str) -> list[str]:
-    """The window's own action, or (tables with "actions": "all") every action, or a rotating subset of
-    `actions_per_window` of them, so that every action is requested equally often over the windows."""
-    if table.get("actions") != "all":
-        return [own]
-    n = int(table.get("actions_per_window", len(actions)))
-    return [actions[(window * n + j) % len(actions)] for j in range(min(n, len(actions)))]
+# --- predictions ------------------------------------------------------------------------------
+
+@dataclass
+class Sample:
+    """One item's prediction: K world-frame futures for one window and one requested action."""
+    futures: np.ndarray            # [K, T, J, 3]
+    lengths: np.ndarray            # [K]
+    samples: list[dict] = field(default_factory=list)
+    history: np.ndarray | None = None   # what the row read (for the bone projection)
 
 
-def predict_model(run: ModelRun, row: Row, table: dict, wins: list[EvalWindow], actions: list[str],
-                  k: int, sampling_seed: int) -> tuple[list[Sample], list[str]]:
-    """K futures per window (and per requested action) through the Python predictor."""
+@dataclass
+class Table:
+    """A table's windows and what every row's metrics compare with."""
+    cfg: dict
+    wins: list[HeldOutWindow]
+    items: list[tuple[int, str]]   # (window, requested action)
+    units: S.Units
+    weights: np.ndarray            # bootstrap resamples of its takes
+    placements: list[Placement]
+    truth_rr: np.ndarray | None    # [W, T, J*3] truths in each window's canonical frame, root-relative
+    sets: dict[str, list[np.ndarray]] = field(default_factory=dict)   # MMADE sets at each threshold
+    threshold: float | None = None
+    truth_feats: list[np.ndarray] | None = None   # pose-GRU features of each window's captured future
+
+
+def predict_model(run: ModelRun, row: Row, tab: Table, k: int, sampling_seed: int,
+                  actions: list[str]) -> tuple[list[Sample | None], list[str]]:
+    """K futures per item through the Python predictor; None where the predictor refuses the history."""
     n = int(run.entry["params"]["history_frames"])
-    t = int(table["horizon_frames"])
+    t = int(tab.cfg["horizon_frames"])
     ctl = controls_of(run.entry)
-    conditioned = "actions" in ctl
     out, refused = [], []
-    for i, w in enumerate(wins):
-        requested = requested_actions(table, actions, i, w.action)
-        for a in requested:
-            req = Request(k=k if "k" in ctl else 1, seed=request_seed(sampling_seed, i, actions.index(a)),
-                          actions=[a] if conditioned else [], horizon_frames=t, controls=dict(row.controls))
-            try:
-                pred = run.predictor.predict(w.history[-n:], req)
-            except PredictError as e:
-                refused.append(str(e))
-                continue
-            if pred.futures.shape[1] < t:   # the contract pads stopped samples to the horizon
-                refused.append(f"returned {pred.futures.shape[1]} frames for a horizon of {t}")
-                continue
-            lengths = np.minimum(np.asarray(pred.lengths), t)
-            out.append(Sample(w, a, np.asarray(pred.futures, dtype=np.float64)[:, :t], lengths,
-                              [s.get("segments", []) for s in pred.samples]))
-    notes = [f"{len(refused)} of {len(refused) + len(out)} predictions refused, e.g. {refused[0]!r}"] if refused else []
+    for w, a in tab.items:
+        win = tab.wins[w]
+        req = Request(k=k if "k" in ctl else 1, seed=request_seed(sampling_seed, w, actions.index(a)),
+                      actions=[a] if "actions" in ctl else [], horizon_frames=t, controls=dict(row.controls))
+        try:
+            pred = run.predictor.predict(win.history[-n:], req)
+        except PredictError as e:
+            refused.append(str(e))
+            out.append(None)
+            continue
+        if pred.futures.shape[1] < t:   # the contract pads stopped samples to the horizon
+            refused.append(f"returned {pred.futures.shape[1]} frames for a horizon of {t}")
+            out.append(None)
+            continue
+        out.append(Sample(np.asarray(pred.futures, dtype=np.float64)[:, :t], np.minimum(np.asarray(pred.lengths), t),
+                          pred.samples, win.history[-n:]))
+    notes = [f"{len(refused)} of {len(out)} predictions refused, e.g. {refused[0]!r}"] if refused else []
     return out, notes
 
 
-def predict_truth(row: Row, wins: list[EvalWindow], k: int, sigma: float, sampling_seed: int) -> list[Sample]:
+def nearest_futures(queries: list[np.ndarray], clips: list[Clip], history: int, horizon: int, stride: int
+                    ) -> np.ndarray:
+    """baselines.nearest_window for many world histories [history, J, 3] at once, over every training window
+    of the training people (mirrors included, as the models train): the bank is streamed clip by clip
+    (baselines.nearest_indices within a clip, the running best across clips; ties go to the first), so
+    only one clip's windows are ever in memory. -> [Q, horizon, J, 3] world futures."""
+    canon, placements = zip(*(canonicalise(np.asarray(q, dtype=np.float64)[-history:], history - 1, SKELETON)
+                              for q in queries))
+    canon = np.stack(canon)
+    query = B.facing_root_relative(canon).reshape(len(canon), -1)
+    best_d = np.full(len(canon), np.inf)
+    best = np.zeros((len(canon), horizon, *canon.shape[2:]))
+    for clip in clips:
+        bank = train_windows([clip], "train", history + horizon, history, stride=stride, mirror=True)
+        if not bank:
+            continue
+        pos = np.stack([w.positions for w in bank])
+        idx = B.nearest_indices(canon, pos[:, :history])
+        d = np.linalg.norm(B.facing_root_relative(pos[idx, :history]).reshape(len(idx), -1) - query, axis=1)
+        better = d < best_d
+        best_d[better], best[better] = d[better], pos[idx[better], history:]
+    return np.stack([place(f, p) for f, p in zip(best, placements)])
+
+
+def predict_baseline(row: Row, tab: Table, train_clips: list[Clip], cfg: dict) -> tuple[list[Sample], list[str]]:
+    """The row's pure baseline function on each window's world history (deterministic: one future)."""
+    t = int(tab.cfg["horizon_frames"])
+    notes = []
+    if row.baseline == "nearest_window":
+        h = int(row.history)
+        futs = nearest_futures([tab.wins[w].history[-h:] for w, _ in tab.items], train_clips, h, t,
+                               int(cfg["nearest"]["stride"]))
+        return [Sample(f[None], np.array([t]), history=tab.wins[w].history[-h:])
+                for f, (w, _) in zip(futs, tab.items)], notes
+    out = []
+    short = 0
+    for w, _ in tab.items:
+        hist = tab.wins[w].history[-int(row.history):]
+        short += len(hist) < int(row.history)
+        if row.baseline == "constant_velocity":
+            fut = B.constant_velocity(hist, t)
+        elif row.baseline == "repeat_cycle":
+            fut = B.repeat_last_cycle(hist, t)
+        else:
+            raise ValueError(f"unknown baseline {row.baseline!r}")
+        out.append(Sample(fut[None], np.array([t]), history=hist))
+    if short:
+        notes.append(f"{short} of {len(out)} windows hold fewer than {row.history} frames before the present "
+                     f"(their take starts later): the baseline reads what there is, at least "
+                     f"{tab.cfg['history_frames']} frames")
+    return out, notes
+
+
+def predict_truth(row: Row, tab: Table, k: int, sigma: float, sampling_seed: int) -> list[Sample]:
     """The oracle (the ground truth itself) and the noise sanity row (K noisy copies of it)."""
     out = []
-    for i, w in enumerate(wins):
-        t = len(w.truth)
+    for i, (w, _) in enumerate(tab.items):
+        truth = tab.wins[w].truth
         if row.kind == "oracle":
-            fut = w.truth[None]
+            fut = truth[None]
         else:
             rng = np.random.default_rng([sampling_seed, i])
-            fut = w.truth[None] + rng.normal(0.0, sigma, (k, *w.truth.shape))
-        out.append(Sample(w, w.action, fut, np.full(len(fut), t)))
+            fut = truth[None] + rng.normal(0.0, sigma, (k, *truth.shape))
+        out.append(Sample(fut, np.full(len(fut), len(truth)), history=tab.wins[w].history))
     return out
 
 
 # --- metrics over a run -----------------------------------------------------------------------
 
+def to_window_frame(world: np.ndarray, p: Placement) -> np.ndarray:
+    """World positions into a window's canonical frame (facing +z at its last history frame, its root's
+    ground point at the origin): facing.place undone."""
+    shifted = np.asarray(world, dtype=np.float64) - np.array([p.x, 0.0, p.z])
+    return rotate_about_y(shifted, -p.angle)
+
+
+def item_metrics(s: Sample, win: HeldOutWindow, t: int, truth: bool, dtw: bool) -> dict[str, float]:
+    """One item's values: accuracy against the ground truth, spread, and plausibility of the raw futures."""
+    f, k = s.futures, len(s.futures)
+    v: dict[str, float] = {}
+    if truth:
+        v["ade"], v["fde"] = M.ade_fde(f, win.truth, root_relative=True)
+        v["ade_full"], v["fde_full"] = M.ade_fde(f, win.truth, root_relative=False)
+        ave, best = M.mpjpe_at(M.root_relative(f), M.root_relative(win.truth), t - 1)
+        v["mpjpe_h_ave"], v["mpjpe_h_best"] = ave * 1000, best * 1000
+    v["apd"] = M.apd(M.root_relative(f))
+    v["div"] = M.diversity(f)
+    if dtw:
+        trimmed = [x[:max(int(n), 2)] for x, n in zip(f, s.lengths)]
+        v["div_w"] = M.diversity_dtw(trimmed) if k > 1 else 0.0
+    hist_rr = M.root_relative(win.history)
+    if len(win.history) >= M.L_FRAMES and t >= M.L_FRAMES:
+        rr = M.root_relative(f)
+        v["smooth"] = float(np.mean([M.transition_smoothness(hist_rr, x) for x in rr])) * 1e6
+        v["smooth_unsq"] = float(np.mean([M.transition_smoothness_unsquared(hist_rr, x) for x in rr])) * 1e3
+    ref = bone_lengths(win.history).mean(0)
+    v["bone"] = 100 * float(np.mean([M.bone_length_error(x, ref) for x in f]))
+    v["foot"] = 100 * float(np.mean([M.foot_below_floor(x) for x in f]))
+    v["jump"] = 100 * float(np.mean([M.jump_ok(*M.first_frame_jump(win.history, x)) for x in f]))
+    v["cut"] = 100 * float(np.mean([bool(x.get("cut")) for x in s.samples])) if s.samples else 0.0
+    if t >= 2:
+        v["speed"] = float(np.mean([M.joint_speed(x, FPS, min(int(FPS), t - 1)) for x in f]))
+    v["length"] = float(np.mean(s.lengths))
+    stops = [seg["stopped"] for x in s.samples for seg in x.get("segments", []) if "stopped" in seg]
+    if stops and any("action" in seg for x in s.samples for seg in x.get("segments", [])):
+        v["stopped"] = 100 * float(np.mean(stops))
+    return v
+
+
+def mm_metrics(s: Sample, w: int, tab: Table) -> dict[str, float]:
+    """MMADE and MMFDE of one window (DLow): its futures' best-of-K ADE and FDE against the truth of every
+    window in its similar set, averaged over the set; at the chosen threshold, half and double it."""
+    f = to_window_frame(s.futures, tab.placements[w])
+    f = M.root_relative(f).reshape(len(f), f.shape[1], -1)
+    members = tab.sets["double"][w]             # every smaller set is inside it
+    ade, fde = M.ade_fde_many(f, tab.truth_rr[members], root_relative=False)
+    at = {m: i for i, m in enumerate(members)}
+    out = {}
+    for name, suffix in (("chosen", ""), ("half", "_half"), ("double", "_double")):
+        idx = [at[m] for m in tab.sets[name][w]]
+        out[f"mmade{suffix}"], out[f"mmfde{suffix}"] = float(ade[idx].mean()), float(fde[idx].mean())
+    return out
+
+
 @dataclass
-class References:
-    """Snippets of real motion the set-level metrics compare with, per action."""
-    train: dict[str, np.ndarray]
-    test: dict[str, np.ndarray]
+class Context:
+    """What every run's metrics need: classifiers, the FID feature space, the evaluation config."""
+    classifiers: dict[str, Classifier]
+    space: FeatureSpace
+    cfg: dict
 
 
-def references(clips: list[Clip], frames: int) -> References:
-    def by_action(part: str, stride: int) -> dict[str, np.ndarray]:
-        x, acts, _ = split_snippets(clips, part, frames, stride)
-        return {a: x[[i for i, b in enumerate(acts) if b == a]] for a in sorted(set(acts))}
-    return References(by_action("train", 2), by_action("test", 1))
+@dataclass
+class RunResult:
+    values: dict[str, np.ndarray]        # per item (NaN where the item has no value)
+    sets: dict[str, float]               # set-level metrics (FID)
+    boot: dict[str, float]               # their take-bootstrap std (first run only)
+    lengths: dict[str, list[int]]
+    items: int
 
 
-def run_metrics(samples: list[Sample], table: dict, classifiers: dict[str, Classifier],
-                space: FeatureSpace, pose_refs: dict[str, dict[str, np.ndarray]], refs: References,
-                cfg: dict, interval: bool) -> tuple[dict[str, float], dict, dict[str, list[int]]]:
-    """One run's value per column, FID intervals (when asked) and predicted lengths per action."""
-    t = int(table["horizon_frames"])
-    stride = int(cfg["snippet_stride"])
-    frames = classifiers["pose_gru"].frames
-    vals: dict[str, list[float]] = {c: [] for c in COLUMNS}
+def run_metrics(samples: list[Sample | None], tab: Table, ctx: Context, first: bool) -> RunResult:
+    """One run's per-item values for every column, and its set-level FID."""
+    t = int(tab.cfg["horizon_frames"])
+    n = len(tab.items)
+    vals: dict[str, np.ndarray] = {c: np.full(n, np.nan) for c in COLUMNS}
     lengths: dict[str, list[int]] = {}
-    for s in samples:
-        k = len(s.futures)
-        trimmed = [f[:max(int(n), 2)] for f, n in zip(s.futures, s.lengths)]
-        dtw = bool(table.get("dtw", True))
-        if s.window.truth is not None:
-            truth = s.window.truth
-            vals["ade"].append(M.ade(s.futures, truth))
-            if dtw:
-                vals["ade_w"].append(M.ade_dtw(trimmed, truth))
-            if t >= FPS:
-                ave, best = M.mpjpe_at(s.futures, truth, int(FPS) - 1)
-                vals["mpjpe_1s_ave"].append(ave * 1000)
-                vals["mpjpe_1s_best"].append(best * 1000)
-            if t > FPS:
-                ave, best = M.mpjpe_at(s.futures, truth, t - 1)
-                vals["mpjpe_h_ave"].append(ave * 1000)
-                vals["mpjpe_h_best"].append(best * 1000)
-        vals["div"].append(M.diversity(s.futures))
-        if dtw:
-            vals["div_w"].append(M.diversity_dtw(trimmed) if k > 1 else 0.0)
-        if len(s.window.history) >= M.L_FRAMES and t >= M.L_FRAMES:
-            vals["smooth"] += [M.transition_smoothness(s.window.history, f) * 1e6 for f in s.futures]
-        if t >= 2:
-            vals["speed"] += [M.joint_speed(f, FPS, min(int(FPS), t - 1)) for f in s.futures]
-        vals["length"] += [float(n) for n in s.lengths]
-        for j, n in enumerate(s.lengths):
-            segs = s.segments[j] if j < len(s.segments) and s.segments[j] else [{"length": int(n)}]
-            for seg in segs:
-                lengths.setdefault(seg.get("action") or s.action, []).append(int(seg["length"]))
-                if "stopped" in seg:
-                    vals["stopped"].append(100.0 * bool(seg["stopped"]))
-    out = {c: float(np.mean(v)) for c, v in vals.items() if v}
-    intervals = {}
-    if t >= frames and samples:
-        motions = [f for s in samples for f in s.futures]
-        targets = [s.action for s in samples for _ in s.futures]
-        for kind, clf in classifiers.items():
-            labels, feats = clf.classify(motions, stride)
-            truth_idx = np.array([clf.actions.index(a) for a in targets])
-            out[f"acc_{'pose' if kind == 'pose_gru' else 'moac'}"] = 100.0 * M.balanced_accuracy(labels, truth_idx)
+    for i, s in enumerate(samples):
+        if s is None:
+            continue
+        w, a = tab.items[i]
+        got = item_metrics(s, tab.wins[w], t, bool(tab.cfg["truth"]), bool(tab.cfg.get("dtw")))
+        if tab.truth_rr is not None:
+            got.update(mm_metrics(s, w, tab))
+        for c, x in got.items():
+            vals[c][i] = x
+        for j, length in enumerate(s.lengths):
+            segs = s.samples[j].get("segments") if j < len(s.samples) else None
+            for seg in segs or [{"length": int(length)}]:
+                lengths.setdefault(seg.get("action") or a, []).append(int(seg["length"]))
+    done = [i for i, s in enumerate(samples) if s is not None]
+    sets, boot = {}, {}
+    stride = int(ctx.cfg["snippet_stride"])
+    clf0 = ctx.classifiers["pose_gru"]
+    if t >= clf0.frames and done:
+        cut = [snippets(f, clf0.frames, stride) for i in done for f in samples[i].futures]
+        owner = np.array([i for i in done for _ in samples[i].futures])
+        feats_by_item: dict[int, list[np.ndarray]] = {}
+        for kind, clf in ctx.classifiers.items():
+            labels, feats = clf.classify_snippets(cut)
+            target = np.array([clf.actions.index(tab.items[i][1]) for i in owner])
+            hit = (labels == target).astype(np.float64)
+            col = "acc_pose" if kind == "pose_gru" else "acc_moac"
+            for i in done:
+                vals[col][i] = 100 * hit[owner == i].mean()
             if kind == "pose_gru":
-                for part in ("train",) if table["source"] == "train" else ("train", "test"):
-                    ref = pose_refs[part]
-                    gen = [f for f, a in zip(feats, targets) if a in ref]
-                    ref_rows = [ref[a] for a in sorted({a for a in targets if a in ref})]
-                    if gen and ref_rows and sum(len(g) for g in gen) > 2:
-                        g, r = np.concatenate(gen), np.concatenate(ref_rows)
-                        col = "fid_tr" if part == "train" else "fid_te"
-                        if interval:
-                            value, lo, hi = space.fid_interval(g, r, int(cfg["fid"]["bootstrap"]), seed=0)
-                            intervals[col] = [lo, hi]
-                        else:
-                            value = space.fid(g, r)
-                        out[col] = value
-        # PSKL per action against that action's real snippets, then averaged over actions.
-        ref = refs.train if table["source"] == "train" else refs.test
-        gp, pg = [], []
-        for a in sorted(set(targets)):
-            if a not in ref or len(ref[a]) == 0:
+                for i, f in zip(owner, feats):
+                    feats_by_item.setdefault(int(i), []).append(f)
+        if tab.truth_feats is not None:
+            gen = [np.concatenate(feats_by_item[i]) for i in done]
+            ref = [tab.truth_feats[tab.items[i][0]] for i in done]
+            if sum(map(len, gen)) > 2 and sum(map(len, ref)) > 2:
+                sets["fid"] = ctx.space.fid(np.concatenate(gen), np.concatenate(ref))
+                if first:
+                    boot["fid"] = fid_boot_std(gen, ref, [int(tab.units.take[i]) for i in done], tab, ctx)
+    return RunResult(vals, sets, boot, lengths, len(done))
+
+
+def fid_boot_std(gen: list[np.ndarray], ref: list[np.ndarray], takes: list[int], tab: Table, ctx: Context) -> float:
+    """FID's std over take resamples (generated and captured features of the drawn takes together)."""
+    rounds = int(ctx.cfg["fid"]["bootstrap"])
+    g = [ctx.space.project(x) for x in gen]
+    r = [ctx.space.project(x) for x in ref]
+    takes = np.asarray(takes)
+    draws = []
+    for wts in tab.weights[:rounds]:
+        pick = np.repeat(np.arange(len(takes)), wts[takes].astype(int))
+        if len(pick) < 2:
+            continue
+        ga, ra = np.concatenate([g[i] for i in pick]), np.concatenate([r[i] for i in pick])
+        if len(ga) > 2 and len(ra) > 2:
+            draws.append(frechet(ga, ra))
+    return float(np.std(draws, ddof=1)) if len(draws) > 1 else 0.0
+
+
+# --- a row through a table ----------------------------------------------------------------------
+
+@dataclass
+class RowStats:
+    """A finished row: per-item values averaged over runs, and each column's seed std (for the claims)."""
+    items: dict[str, np.ndarray]
+    seed_std: dict[str, float]
+
+
+def summarise_runs(results: list[RunResult], tab: Table) -> tuple[dict, RowStats]:
+    """values[col] = {"mean", "std" (bootstrap and seeds combined), "seed_std", "boot_std", "n"}."""
+    values, items, seed_std = {}, {}, {}
+    for col, spec in COLUMNS.items():
+        if col in SET_LEVEL:
+            per_run = [r.sets[col] for r in results if col in r.sets]
+            if not per_run:
                 continue
-            gen = np.concatenate([snippets(f, frames, stride) for f, b in zip(motions, targets) if b == a])
-            x, y = M.pskl(ref[a], gen)
-            gp.append(x)
-            pg.append(y)
-        if gp:
-            out["pskl_gt_pred"], out["pskl_pred_gt"] = float(np.mean(gp)), float(np.mean(pg))
-    return out, intervals, lengths
+            s = S.summarise(per_run)
+            boot = next((r.boot[col] for r in results if col in r.boot), 0.0)
+            values[col] = {**s, "seed_std": s["std"], "boot_std": boot, "std": math.hypot(s["std"], boot)}
+            continue
+        stack = np.stack([r.values[col] for r in results])
+        if not np.isfinite(stack).any():
+            continue
+        per_run = [S.aggregate(v, tab.units, spec.balanced) for v in stack]
+        s = S.summarise(per_run)
+        if s is None:
+            continue
+        with warnings.catch_warnings():   # an item no run predicted stays NaN
+            warnings.simplefilter("ignore", RuntimeWarning)
+            mean_items = np.nanmean(stack, axis=0)
+        boot = S.cluster_std(mean_items, tab.units, tab.weights, spec.balanced)
+        values[col] = {**s, "seed_std": s["std"], "boot_std": boot, "std": math.hypot(s["std"], boot)}
+        items[col], seed_std[col] = mean_items, s["std"]
+    return values, RowStats(items, seed_std)
+
+
+def by_action(stats: RowStats, tab: Table, cols=("ade", "apd", "acc_moac")) -> dict[str, dict[str, float]]:
+    """The row's run-averaged value per action (requested action in the transitions table)."""
+    out = {}
+    acts = np.array([a for _, a in tab.items])
+    for col in cols:
+        if col not in stats.items:
+            continue
+        v = stats.items[col]
+        out[col] = {a: float(np.nanmean(v[acts == a])) for a in sorted(set(acts)) if np.isfinite(v[acts == a]).any()}
+    return out
 
 
 # --- the whole evaluation ---------------------------------------------------------------------
 
-def train_classifiers(clips: list[Clip], cfg: dict, cache_dir: Path | None) -> tuple[dict, dict]:
-    """Pose GRU and MOAC (plus the shuffled-label pose GRU of the sanity rows) and their own accuracies."""
+def train_classifiers(clips: list[Clip], cfg: dict, cache_dir: Path | None, progress=print) -> tuple[dict, dict]:
+    """Pose GRU and MOAC, each in the configuration leave-one-person-out chose inside the training people,
+    then trained on every training person (plus the shuffled-label pose GRU of the sanity check); their
+    held-out accuracies overall and per action."""
     ccfg = cfg["classifier"]
     seed = int(ccfg["seed"])
     frames = int(ccfg["snippet_frames"])
-    report = {}
-    trained = {}
+    report, trained = {}, {}
     xtr, atr, _ = split_snippets(clips, "train", frames, int(ccfg["stride"]))
-    xte, ate, cte = split_snippets(clips, "test", frames, 1)
+    xte, ate, cte = split_snippets(clips, "test", frames, int(ccfg.get("test_stride", 5)))
+    # Non-overlapping held-out snippets for the shuffled-label check: its binomial band counts them as trials.
+    xsh, ash, _ = split_snippets(clips, "test", frames, frames)
+    chosen = {}
+    for kind in ("pose_gru", "moac"):
+        start = time.time()
+        chosen[kind], selection = select_classifier(kind, clips, ccfg, cache_dir)
+        progress(f"classifier {kind}: leave-one-person-out chose {selection['chosen']} ({time.time() - start:.0f} s)")
+        report[kind] = {"selection": selection}
     for kind, shuffled in (("pose_gru", False), ("moac", False), ("pose_gru", True)):
         start = time.time()
-        clf = train_classifier(kind, clips, ccfg, seed, shuffled=shuffled, cache_dir=cache_dir)
-        groups = {}
-        predicted = clf.snippet_outputs(xte)[0].argmax(1) if len(xte) else np.zeros(0, dtype=int)
-        for name in sorted({"walker" if c.startswith("walker") else c for c in cte}):
-            idx = [i for i, c in enumerate(cte) if (c.startswith("walker") if name == "walker" else c == name)]
-            labels, counts = np.unique(predicted[idx], return_counts=True)
-            groups[name] = {"accuracy": 100 * snippet_accuracy(clf, xte[idx], [ate[i] for i in idx]),
-                            "snippets": len(idx),
-                            "predicted": {clf.classes[j]: int(n) for j, n in sorted(zip(labels, counts), key=lambda x: -x[1])}}
+        clf = train_classifier(kind, clips, chosen[kind], seed, shuffled=shuffled, cache_dir=cache_dir)
         key = kind + ("_shuffled" if shuffled else "")
-        # What a motionless snippet is called (any pose held still: MOAC then sees zero velocity). A static
-        # prediction inherits this class, so it explains how zero-velocity scores.
         still = np.repeat(xtr[:1, :1], frames, axis=1)
-        report[key] = {
-            "motionless_class": clf.classes[int(clf.snippet_outputs(still)[0].argmax())],
-            "train_accuracy": 100 * snippet_accuracy(clf, xtr, atr),
-            "test_accuracy": 100 * snippet_accuracy(clf, xte, ate),
-            "test_balanced_accuracy": 100 * snippet_accuracy(clf, xte, ate, balanced=True),
-            "test_groups": groups, "train_snippets": len(xtr), "test_snippets": len(xte),
-            "classes": len(clf.classes), "chance": 100.0 / len(clf.classes),
-            "seconds": round(time.time() - start, 1)}
+        predicted = clf.snippet_outputs(xte)[0].argmax(1) if len(xte) else np.zeros(0, dtype=int)
+        groups = {}
+        for a in sorted(set(ate)):
+            idx = [i for i, b in enumerate(ate) if b == a]
+            labels, counts = np.unique(predicted[idx], return_counts=True)
+            groups[a] = {"predicted": {clf.classes[j]: int(c) for j, c in sorted(zip(labels, counts), key=lambda x: -x[1])[:4]}}
+        per_action = action_accuracy(clf, xte, ate)
+        for a, g in groups.items():
+            g.update(per_action[a])
+        report[key] = {**report.get(key, {}),
+                       "config": {k: v for k, v in chosen[kind].items() if k in ("hidden", "noise", "steps")},
+                       "motionless_class": clf.classes[int(clf.snippet_outputs(still)[0].argmax())],
+                       "train_accuracy": 100 * snippet_accuracy(clf, xtr, atr),
+                       "test_accuracy": 100 * snippet_accuracy(clf, xte, ate),
+                       "test_balanced_accuracy": 100 * snippet_accuracy(clf, xte, ate, balanced=True),
+                       "test_groups": groups, "train_snippets": len(xtr), "test_snippets": len(xte),
+                       "test_takes": len(set(cte)), "classes": len(clf.classes), "chance": 100.0 / len(clf.classes),
+                       "seconds": round(time.time() - start, 1)}
+        if shuffled:
+            # Chance for this classifier: the accuracy its own prediction frequencies q would reach if they were
+            # independent of the true actions (frequencies p), sum_c q_c p_c. A classifier trained on shuffled
+            # labels can learn the label prior (and call everything by one class) but nothing more.
+            pred = clf.snippet_outputs(xsh)[0].argmax(1)
+            truth = np.array([clf.actions.index(a) for a in ash])
+            q = np.bincount(pred, minlength=len(clf.classes)) / len(pred)
+            p = np.bincount(truth, minlength=len(clf.classes)) / len(truth)
+            report[key].update(check_snippets=len(xsh), check_accuracy=100 * float((pred == truth).mean()),
+                               check_chance=100 * float(q @ p))
         trained[key] = clf
     return trained, report
+
+
+def heldout_actions(clips: list[Clip]) -> list[str]:
+    """CMU actions with held-out people: the only ones a claim may rest on."""
+    return sorted({c.action for c in clips if c.split.role == "test"})
+
+
+def build_table(table: dict, clips: list[Clip], actions: list[str], ctx: Context) -> Table:
+    """Windows, items and bootstrap units of a table; for tables with ground truth also the MMADE sets and
+    the captured futures' classifier features."""
+    cfg = ctx.cfg
+    wins = table_windows(clips, table)
+    pool = heldout_actions(clips) if table.get("actions") == "heldout" else actions
+    items = [(i, a) for i, w in enumerate(wins) for a in requested_actions(table, pool, i, w.action)]
+    units = S.units([wins[i].clip for i, _ in items], [a for _, a in items], [wins[i].subject for i, _ in items])
+    weights = S.bootstrap_weights(int(units.take.max()) + 1 if len(units) else 1, int(cfg["bootstrap"]["rounds"]),
+                                  int(cfg["bootstrap"]["seed"]))
+    h = int(table["history_frames"])
+    placements = [canonicalise(w.history[-h:], h - 1, SKELETON)[1] for w in wins]
+    tab = Table(table, wins, items, units, weights, placements, None)
+    if table["truth"] and wins:
+        tab.truth_rr = np.stack([M.root_relative(to_window_frame(w.truth, p)).reshape(len(w.truth), -1)
+                                 for w, p in zip(wins, placements)])
+        last = np.stack([to_window_frame(w.history[-1:], p) for w, p in zip(wins, placements)])
+        if len(wins) >= int(cfg["mmade"]["min_median_size"]):
+            thr = M.choose_threshold(last, int(cfg["mmade"]["min_median_size"]))
+            tab.threshold = thr
+            tab.sets = {"chosen": M.similar_sets(last, thr), "half": M.similar_sets(last, thr / 2),
+                        "double": M.similar_sets(last, thr * 2)}
+        else:
+            tab.sets = {name: [np.array([i]) for i in range(len(wins))] for name in ("chosen", "half", "double")}
+        clf = ctx.classifiers["pose_gru"]
+        if int(table["horizon_frames"]) >= clf.frames:
+            _, feats = clf.classify([w.truth for w in wins], int(cfg["snippet_stride"]))
+            tab.truth_feats = feats
+    return tab
+
+
+def table_doc(tab: Table, clips: list[Clip], doc_k: int) -> dict:
+    table = tab.cfg
+    h, t = int(table["history_frames"]), int(table["horizon_frames"])
+    doc = {key: table[key] for key in ("id", "title", "about", "source", "horizon_frames", "truth")}
+    doc.update({"k": doc_k, "history_frames": h, "context_frames": int(table.get("context_frames", h)),
+                "windows": len(tab.wins), "items": len(tab.items), "stride": int(table["stride"]),
+                "clips": sorted({w.clip for w in tab.wins}), "actions": sorted({a for _, a in tab.items}),
+                "people": sorted({str(w.subject) for w in tab.wins}, key=lambda p: (len(p), p)),
+                "takes": len({w.clip for w in tab.wins}), "rows": [], "notes": [],
+                "in_sample": table["source"] == "train"})
+    if table["source"] == "test" and table["truth"]:
+        doc["exceptions"] = [{"action": a, "horizon_frames": x}
+                             for a, x in short_horizons([c for c in clips if c.split.role == "test"], h, [t])]
+    if tab.threshold is not None:
+        chosen = tab.sets["chosen"]
+        doc["mmade"] = {"threshold": tab.threshold, "median_set": float(np.median([len(s) for s in chosen])),
+                        "alone": int(sum(len(s) == 1 for s in chosen)),
+                        "half": {"threshold": tab.threshold / 2,
+                                 "median_set": float(np.median([len(s) for s in tab.sets["half"]])),
+                                 "alone": int(sum(len(s) == 1 for s in tab.sets["half"]))},
+                        "double": {"threshold": tab.threshold * 2,
+                                   "median_set": float(np.median([len(s) for s in tab.sets["double"]])),
+                                   "alone": int(sum(len(s) == 1 for s in tab.sets["double"]))}}
+    return doc
+
+
+def rows_for(table: dict, rows: list[Row]) -> list[Row]:
+    served = served_configs()
+    out = []
+    for r in rows:
+        if r.tables is not None and table["id"] not in r.tables:
+            continue
+        if table.get("served_only") and not (r.kind == "oracle" or (r.kind == "model" and r.config in served)):
+            continue
+        out.append(r)
+    return out
 
 
 def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: Path = MODELS_DIR,
@@ -392,19 +667,18 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
     torch.set_num_threads(1)   # the machine is shared, and small batches gain nothing from threads
     k = int(cfg["k"])
     actions = sorted({c.action for c in clips})
-    classifiers, clf_report = train_classifiers(clips, cfg, cache_dir)
+    train_clips = [c for c in clips if c.split.role != "test"]
+    classifiers, clf_report = train_classifiers(clips, cfg, cache_dir, progress)
     main = {"pose_gru": classifiers["pose_gru"], "moac": classifiers["moac"]}
     frames = main["pose_gru"].frames
-    refs = references(clips, frames)
-    # FID features: PCA fitted on the training snippets' pose-GRU features (WAT supplement sec. 10).
-    pose_refs = {part: {a: main["pose_gru"].snippet_outputs(x)[1] for a, x in getattr(refs, part).items()}
-                 for part in ("train", "test")}
-    space = FeatureSpace(np.concatenate(list(pose_refs["train"].values())), int(cfg["fid"]["dims"]))
-    progress(f"classifiers ready ({time.time() - started:.0f} s)")
+    xtr, _, _ = split_snippets(clips, "train", frames, 2)
+    space = FeatureSpace(main["pose_gru"].snippet_outputs(xtr)[1], int(cfg["fid"]["dims"]))
+    ctx = Context(main, space, cfg)
+    clf_seconds = time.time() - started
+    progress(f"classifiers ready ({clf_seconds:.0f} s)")
 
-    tables = []
-    served_hashes: dict[str, str] = {}
     skipped: list[dict] = []
+    served_hashes: dict[str, str] = {}
     loaded: dict[str, tuple[list[ModelRun], list[str]]] = {}
     for r in rows:
         if r.kind == "model":
@@ -414,141 +688,161 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
             for run in loaded[r.id][0]:
                 if run.served:
                     served_hashes[run.entry["id"]] = run.entry["hash"]
+
+    tables, store, tabs = [], {}, {}
     for table in cfg["tables"]:
         t0 = time.time()
-        cache: dict[int, list[EvalWindow]] = {}
-
-        def windows_for(h: int, table=table, cache=cache) -> list[EvalWindow]:
-            if h not in cache:
-                cache[h] = table_windows(clips, table, h)
-            return cache[h]
-
-        fixed = None if per_row_history(table) else int(table["history_frames"])
-        wins = windows_for(fixed or M.L_FRAMES)
-        doc = {key: table[key] for key in ("id", "title", "about", "source", "horizon_frames", "truth")}
-        doc.update({"k": k, "history_frames": fixed, "windows": len(wins) if fixed else None,
-                    "clips": sorted({w.clip for w in wins}),
-                    "actions": sorted({w.action for w in wins}) if table.get("actions") != "all" else actions,
-                    "rows": [], "notes": []})
-        t = int(table["horizon_frames"])
-        doc["columns"] = [c for c in COLUMNS if _column_applies(c, table)]
-        edges = list(range(0, t + 1, int(cfg["length_bin_frames"])))
-        if edges[-1] != t:
-            edges.append(t)
+        tab = build_table(table, clips, actions, ctx)
+        tabs[table["id"]] = tab
+        doc = table_doc(tab, clips, k)
+        store[table["id"]] = {}
+        edges = list(range(0, int(table["horizon_frames"]) + 1, int(cfg["length_bin_frames"])))
+        if edges[-1] != int(table["horizon_frames"]):
+            edges.append(int(table["horizon_frames"]))
         doc["length_edges"] = edges
-        for r in rows:
-            if r.tables is not None and table["id"] not in r.tables:
-                continue
+        derived: dict[str, list[tuple[RunResult, list[str]]]] = {}
+        for r in rows_for(table, rows):
             r0 = time.time()
-            row_doc = _run_row(r, table, windows_for, loaded.get(r.id), cfg, k, actions, main, space, pose_refs,
-                               refs, edges)
+            row_doc, results = _run_row(r, tab, loaded.get(r.id), cfg, k, actions, ctx, train_clips, derived, rows)
             if row_doc is None:
                 continue
+            if results:
+                values, stats_ = summarise_runs(results, tab)
+                row_doc["values"] = values
+                row_doc["by_action"] = by_action(stats_, tab)
+                row_doc["lengths"] = {a: M.length_histogram(v, edges) for a, v in sorted(results[0].lengths.items())}
+                row_doc["items"] = results[0].items
+                store[table["id"]][r.id] = stats_
             row_doc["seconds"] = round(time.time() - r0, 1)
             doc["rows"].append(row_doc)
-        if not doc["rows"]:
-            doc["notes"].append("no row can run here yet" + (" (no action-conditioned model)" if table.get(
-                "conditioned_only") else ""))
-        progress(f"table {table['id']}: {len(wins) if fixed else 'per-row'} windows, {len(doc['rows'])} rows "
-                 f"({time.time() - t0:.0f} s)")
+        columns = [c for c, spec in COLUMNS.items() if spec.section and any(c in r.get("values", {}) for r in doc["rows"])]
+        doc["columns"] = columns
+        doc["extra_columns"] = [c for c in COLUMNS if not COLUMNS[c].section
+                                and any(c in r.get("values", {}) for r in doc["rows"])]
+        if not [r for r in doc["rows"] if r.get("values")]:
+            doc["notes"].append("no row can run here yet")
+        doc["seconds"] = round(time.time() - t0, 1)
+        progress(f"table {table['id']}: {len(tab.wins)} windows, {len(doc['rows'])} rows ({doc['seconds']:.0f} s)")
         tables.append(doc)
 
-    from .checks import evaluate_claims, sanity_checks
+    from .checks import (claims_tally, copying_checks, evaluate_claims, recognition_checks, sanity_checks,
+                         shape_comparison, variant_report)
     sanity = sanity_checks(tables, clf_report, cfg)
-    claims = evaluate_claims(tables)
-    return {"format": "motion-futures/results", "version": 1,
-            "columns": {c: {"label": v[0], "unit": v[1], "better": v[2]} for c, v in COLUMNS.items()},
-            "k": k, "fps": FPS, "training_seeds": cfg["training_seeds"], "sampling_seeds": cfg["sampling_seeds"],
-            "models": served_hashes, "classifiers": clf_report, "classifier_config": cfg["classifier"],
-            "sanity": sanity, "claims": claims, "tables": tables, "skipped": skipped,
-            "context_plot": cfg.get("context_plot", []), "length_plot": cfg.get("length_plot"),
-            "seconds": round(time.time() - started, 1)}
+    recognition = recognition_checks(tables, clf_report)
+    sanity += recognition
+    by_table = {t["id"]: t for t in tables}
+    claims = evaluate_claims(by_table, store, tabs, recognition)
+    doc = {"format": "motion-futures/results", "version": 2,
+           "columns": {c: {"label": v.label, "unit": v.unit, "better": v.better} for c, v in COLUMNS.items()},
+           "k": k, "fps": FPS, "training_seeds": cfg["training_seeds"], "sampling_seeds": cfg["sampling_seeds"],
+           "bootstrap": cfg["bootstrap"], "min_people": S.MIN_PEOPLE, "min_takes": S.MIN_TAKES,
+           "models": served_hashes, "classifiers": clf_report,
+           "classifier_config": {k2: v for k2, v in cfg["classifier"].items() if k2 != "selection"},
+           "sanity": sanity, "claims": claims,
+           "copying": copying_checks(by_table, store, tabs),
+           "shape": shape_comparison(by_table, store, tabs),
+           "variants": variant_report(by_table, tabs),
+           "data": data_summary(clips),
+           "tables": tables, "skipped": skipped,
+           "context_plot": cfg.get("context_plot", []), "length_plot": cfg.get("length_plot"),
+           "classifier_seconds": round(clf_seconds, 1), "seconds": round(time.time() - started, 1)}
+    doc["tally"] = claims_tally(claims)
+    from .card import copying_tally, recognition_tally, summary
+    from .report import _round
+    doc["copying_tally"] = copying_tally(doc)
+    doc["recognition_tally"] = recognition_tally(doc)
+    doc["summary"] = summary(_round(doc))   # from the numbers as results.json stores them
+    return doc
 
 
-def _column_applies(col: str, table: dict) -> bool:
-    label, unit, better, needs_truth = COLUMNS[col]
+def data_summary(clips: list[Clip]) -> dict:
+    """What the tables are cut from: people, takes and seconds on each side of the split."""
+    test = [c for c in clips if c.split.role == "test"]
+    train = [c for c in clips if c.split.role != "test"]
+    return {"fps": FPS, "joints": SKELETON.num_joints, "clips": len(clips), "actions": len({c.action for c in clips}),
+            "heldout_people": sorted({str(c.subject) for c in test}, key=lambda p: (len(p), p)),
+            "heldout_takes": len(test), "heldout_actions": heldout_actions(clips),
+            "heldout_seconds": round(sum(len(c) for c in test) / FPS, 1),
+            "train_people": len({str(c.subject) for c in train}), "train_takes": len(train),
+            "train_seconds": round(sum(len(c) for c in train) / FPS, 1)}
+
+
+def _run_row(r: Row, tab: Table, loaded, cfg: dict, k: int, actions: list[str], ctx: Context,
+             train_clips: list[Clip], derived: dict, rows: list[Row]) -> tuple[dict | None, list[RunResult]]:
+    table = tab.cfg
     t = int(table["horizon_frames"])
-    if needs_truth and not table["truth"]:
-        return False
-    if col.startswith("mpjpe_1s") and t < FPS or col.startswith("mpjpe_h") and t <= FPS:
-        return False
-    if col in ("ade_w", "div_w") and not table.get("dtw", True):
-        return False
-    return not (col == "fid_te" and table["source"] == "train")
-
-
-def _run_row(r: Row, table: dict, windows_for, loaded, cfg: dict, k: int, actions: list[str],
-             classifiers, space, pose_refs, refs, edges) -> dict | None:
-    t = int(table["horizon_frames"])
-    fixed = None if per_row_history(table) else int(table["history_frames"])
     base = {"id": r.id, "label": r.label, "kind": r.kind, "group": r.group, "note": r.note,
             "controls": r.controls, "notes": []}
-    runs_values: list[dict] = []
-    intervals: dict = {}
-    lengths: dict[str, list[int]] = {}
+    results: list[RunResult] = []
+    if not tab.items:
+        return None, []
     if r.kind in ("oracle", "noise"):
         if not table["truth"]:
-            return None
+            return None, []
         seeds = list(cfg["sampling_seeds"]) if r.kind == "noise" else [cfg["sampling_seeds"][0]]
-        wins = windows_for(fixed)
         for s in seeds:
-            samples = predict_truth(r, wins, k, float(cfg["noise_sigma"]), s)
-            vals, iv, lens = run_metrics(samples, table, classifiers, space, pose_refs, refs, cfg, not runs_values)
-            runs_values.append(vals)
-            intervals = intervals or iv
-            lengths = lengths or lens
-        base.update({"k": 1 if r.kind == "oracle" else k, "history_frames": None, "train_seeds": []})
+            results.append(run_metrics(predict_truth(r, tab, k, float(cfg["noise_sigma"]), s), tab, ctx, not results))
+        base.update({"k": 1 if r.kind == "oracle" else k, "history_frames": None, "train_seeds": [], "runs": len(results)})
         if r.kind == "noise":
             base["sigma"] = float(cfg["noise_sigma"])
-    else:
-        runs, notes = loaded
-        if not runs:
-            return None
+        return base, results
+    if r.kind == "baseline":
+        if not table["truth"]:
+            return None, []
+        samples, notes = predict_baseline(r, tab, train_clips, cfg)
         base["notes"] += notes
-        first = runs[0].entry
-        ctl = controls_of(first)
-        if table.get("conditioned_only") and "actions" not in ctl:
-            return None
-        need = int(first["params"]["history_frames"])
-        if fixed is not None and need > fixed:
-            base["skipped"] = f"needs {need} history frames; this table's windows have {fixed}"
-            return base
-        # Per-row tables cut at least L frames of history, so Eq. 4 can be measured at the transition.
-        wins = windows_for(fixed or max(need, M.L_FRAMES))
-        if not wins:
-            base["skipped"] = f"no window of {need} history frames fits in this table's clips"
-            return base
-        base["windows"] = len(wins)
-        if fixed is None:
-            base["notes"].append(f"history {need} frames, {len(wins)} windows")
-        usable = [run for run in runs if max_horizon(run.entry) >= t]
-        if not usable:
-            base["skipped"] = f"predicts at most {max_horizon(first)} frames; this table needs {t}"
-            return base
-        if len(usable) < len(runs):
-            base["notes"].append(f"training seeds {[x.seed for x in runs if x not in usable]} predict at most "
-                                 f"{min(max_horizon(x.entry) for x in runs if x not in usable)} frames (stale export)")
-        stochastic = "k" in ctl
-        sampling = list(cfg["sampling_seeds"]) if stochastic else [cfg["sampling_seeds"][0]]
-        for run in usable:
-            for s in sampling:
-                samples, refused = predict_model(run, r, table, wins, actions, k, s)
-                base["notes"] += [n for n in refused if n not in base["notes"]]
-                if not samples:
-                    continue
-                vals, iv, lens = run_metrics(samples, table, classifiers, space, pose_refs, refs, cfg,
-                                             not runs_values)
-                runs_values.append(vals)
-                intervals = intervals or iv
-                lengths = lengths or lens
-        base.update({"k": k if stochastic else 1, "history_frames": need,
-                     "train_seeds": [run.seed for run in usable], "sampling_seeds": sampling,
-                     "hashes": {str(run.seed): run.entry["hash"] for run in usable}})
-        if not stochastic:
-            base["notes"].append("deterministic: one future per history; sampling seeds do not apply")
-    base["runs"] = len(runs_values)
-    base["values"] = {c: summarise([v.get(c, math.nan) for v in runs_values]) for c in COLUMNS}
-    base["values"] = {c: v for c, v in base["values"].items() if v is not None}
-    base["intervals"] = intervals
-    base["lengths"] = {a: M.length_histogram(v, edges) for a, v in sorted(lengths.items())}
-    return base
+        results.append(run_metrics(samples, tab, ctx, True))
+        base.update({"k": 1, "history_frames": r.history, "train_seeds": [], "runs": 1})
+        return base, results
+    if r.kind == "projected":
+        got = derived.get(r.id)
+        if not got:
+            return None, []
+        base.update({"k": k, "train_seeds": None, "runs": len(got), "parent": r.parent})
+        base["notes"] += got[0][1] if got else []
+        return base, [x for x, _ in got]
+    runs, notes = loaded
+    if not runs:
+        return None, []
+    base["notes"] += notes
+    first = runs[0].entry
+    ctl = controls_of(first)
+    if table.get("conditioned_only") and "actions" not in ctl:
+        return None, []
+    need = int(first["params"]["history_frames"])
+    if need > int(table["history_frames"]):
+        base["skipped"] = f"needs {need} history frames; this table's windows have {table['history_frames']}"
+        return base, []
+    usable = [run for run in runs if max_horizon(run.entry) >= t]
+    if not usable:
+        base["skipped"] = f"predicts at most {max_horizon(first)} frames; this table needs {t}"
+        return base, []
+    if len(usable) < len(runs):
+        base["notes"].append(f"training seeds {[x.seed for x in runs if x not in usable]} predict at most "
+                             f"{min(max_horizon(x.entry) for x in runs if x not in usable)} frames (stale export)")
+    if table.get("seeds") == "first":
+        usable = usable[:1]
+    stochastic = "k" in ctl
+    sampling = list(cfg["sampling_seeds"]) if stochastic else [cfg["sampling_seeds"][0]]
+    projected = [x for x in rows if x.kind == "projected" and x.parent == r.id
+                 and (x.tables is None or table["id"] in x.tables)]
+    for run in usable:
+        for s in sampling:
+            samples, refused = predict_model(run, r, tab, k, s, actions)
+            base["notes"] += [n for n in refused if n not in base["notes"]]
+            if not any(x is not None for x in samples):
+                continue
+            results.append(run_metrics(samples, tab, ctx, not results))
+            for p in projected:
+                proj = [None if x is None else Sample(project_onto_history(x.futures, x.history), x.lengths,
+                                                      x.samples, x.history) for x in samples]
+                derived.setdefault(p.id, []).append((run_metrics(proj, tab, ctx, len(derived.get(p.id, [])) == 0),
+                                                     [f"{r.label}: {len(usable)} training seeds x {len(sampling)} sampling seeds"]))
+    base.update({"k": k if stochastic else 1, "history_frames": need, "runs": len(results),
+                 "train_seeds": [run.seed for run in usable], "sampling_seeds": sampling,
+                 "hashes": {str(run.seed): run.entry["hash"] for run in usable}})
+    if stochastic and len(usable) < 2:
+        base["notes"].append("one training seed: the bar holds the take bootstrap only, no seed variance")
+    if not stochastic:
+        base["notes"].append("deterministic: one future per history; sampling seeds do not apply")
+    return base, results

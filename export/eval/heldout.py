@@ -23,19 +23,33 @@ class HeldOutWindow:
     clip: str
     subject: object
     action: str
-    history: np.ndarray        # [N, J, 3] world
-    truth: np.ndarray          # [H, J, 3] world, the frames after the history
+    history: np.ndarray        # [N, J, 3] world (N may exceed the window's history: earlier context)
+    truth: np.ndarray | None   # [H, J, 3] world, the frames after the history (None without a horizon)
+    present: int = -1          # the clip frame of the last history frame
+
+
+def cut_windows(clips: list[Clip], part: str, history: int, horizon: int, stride: int,
+                context: int | None = None) -> list[HeldOutWindow]:
+    """Windows of history + horizon frames inside each clip's `part` ranges ("test": the held-out people,
+    "train": the training people), `stride` apart, straight from the world-frame positions (never padded,
+    never loop-repeated). Each keeps up to `context` >= history frames before its present (fewer where
+    the range starts later), so a row that reads a longer history sees the same windows."""
+    if part not in ("train", "test"):
+        raise ValueError(f"part must be 'train' or 'test', got {part!r}")
+    context = max(context or history, history)
+    out = []
+    for c in clips:
+        for a, b in (c.split.test if part == "test" else c.split.train):
+            for s in range(a, b - history - horizon + 1, stride):
+                p = s + history - 1
+                out.append(HeldOutWindow(c.name, c.subject, c.action, c.positions[max(a, p + 1 - context):p + 1],
+                                         c.positions[p + 1:p + 1 + horizon] if horizon else None, p))
+    return out
 
 
 def heldout_windows(clips: list[Clip], history: int, horizon: int, stride: int) -> list[HeldOutWindow]:
     """Every window of history + horizon frames inside the test ranges (held-out people), `stride` apart."""
-    out = []
-    for c in clips:
-        for a, b in c.split.test:
-            for s in range(a, b - history - horizon + 1, stride):
-                out.append(HeldOutWindow(c.name, c.subject, c.action, c.positions[s:s + history],
-                                         c.positions[s + history:s + history + horizon]))
-    return out
+    return cut_windows(clips, "test", history, horizon, stride)
 
 
 def measure(futures: np.ndarray, w: HeldOutWindow, horizons: list[int]) -> dict[str, float]:

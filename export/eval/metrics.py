@@ -15,6 +15,7 @@ averages the per-joint distances.
 | PSKL gt-pred / pred-gt       | pskl                      | Keyposes sec. 4.3 (from [33])   |
 | predicted lengths per action | length_histogram          | WAT sec. 3.3                    |
 | transition smoothness        | transition_smoothness     | WAT Eq. 4 (ops/dct_smoothness)  |
+| Eq. 4 as the authors' code   | transition_smoothness_unsquared | WAT code: unsquared norms |
 | joint speed                  | joint_speed               | mean speed in the last second   |
 | classifier accuracy          | accuracy                  | WAT sec. 4.2 (2), Keyposes MOAC |
 | mean per-class accuracy      | balanced_accuracy         | LCP-VAE sec. 5 ("context")      |
@@ -37,7 +38,8 @@ from scipy.special import gammaln
 
 from ..data.skeleton import SKELETON, Skeleton
 from ..ops import facing
-from ..ops.dct_smoothness import L_FRAMES, smoothness
+from ..ops.dct import dct_basis
+from ..ops.dct_smoothness import L_FRAMES, M_BASES, smoothness
 from ..ops.bones import bone_lengths
 from ..ops.floor import foot_height
 
@@ -346,3 +348,38 @@ def mmade_mmfde(futures_per_window, truths: np.ndarray, sets: list[np.ndarray],
                   for w, members in enumerate(sets)]
     mm = np.mean(per_window, axis=0)
     return float(mm[0]), float(mm[1])
+
+
+# --- Eq. 4 as the authors' released code computes it (issue 18: disclosed beside the printed one) -------
+
+
+def transition_smoothness_unsquared(before: np.ndarray, after: np.ndarray, frames: int = L_FRAMES,
+                                    bases: int = M_BASES) -> float:
+    """WAT Eq. 4 with the unsquared per-pose norm, (1/2L) sum_i ||z_i - z~_i||_2 (metres), as the authors'
+    code takes the mean of the norms; the paper prints the squared norm (transition_smoothness). Same
+    Z and the same M lowest DCT bases over 2L frames."""
+    if len(before) < frames or len(after) < frames:
+        raise ValueError(f"transition smoothness needs {frames} frames on each side, "
+                         f"got {len(before)} before and {len(after)} after")
+    z = np.concatenate([np.asarray(before, dtype=np.float64)[-frames:],
+                        np.asarray(after, dtype=np.float64)[:frames]]).reshape(2 * frames, -1)
+    d = dct_basis(2 * frames, bases)
+    return float(np.linalg.norm(z - d @ (d.T @ z), axis=1).mean())
+
+
+def ade_fde_many(futures: np.ndarray, truths: np.ndarray, root_relative: bool) -> tuple[np.ndarray, np.ndarray]:
+    """ade_fde of the same K futures against each of M truths [M, T, J, 3] at once: two [M] arrays, each
+    entry what ade_fde(futures, truths[m], root_relative) gives (MMADE's inner loop, one array operation)."""
+    futures, truths = np.asarray(futures, dtype=np.float64), np.asarray(truths, dtype=np.float64)
+    t = truths.shape[1]
+    if futures.shape[1] < t:
+        raise ValueError(f"the futures have {futures.shape[1]} frames, fewer than the truths' {t}")
+    futures = futures[:, :t]
+    if root_relative:
+        futures, truths = _to_root_relative(futures), _to_root_relative(truths)
+    f = futures.reshape(len(futures), t, -1)
+    g = truths.reshape(len(truths), t, -1)
+    # |f - g|^2 = |f|^2 + |g|^2 - 2 f.g per frame: no [K, M, T, D] temporary (M is a whole similar set).
+    sq = (f * f).sum(-1)[:, None] + (g * g).sum(-1)[None] - 2.0 * np.einsum("ktd,mtd->kmt", f, g)
+    dist = np.sqrt(np.maximum(sq, 0.0))                    # [K, M, T]
+    return dist.mean(-1).min(0), dist[..., -1].min(0)

@@ -1,4 +1,5 @@
-"""Writers for the evaluation: public/results.json (the Results page reads it) and docs/RESULTS.md."""
+"""Writers for the evaluation: public/results.json (the Results page reads it), docs/RESULTS.md and
+docs/MODEL_CARD.md (export/eval/card.py), all from the one results document."""
 from __future__ import annotations
 
 import json
@@ -10,6 +11,9 @@ from .harness import COLUMNS
 
 RESULTS_JSON = PUBLIC / "results.json"
 RESULTS_MD = DOCS_DIR / "RESULTS.md"
+
+SECTIONS = (("accuracy", "Accuracy against the captured future"), ("diversity", "Diversity"),
+            ("recognition", "Recognition"), ("plausibility", "Plausibility of the raw futures"))
 
 
 def _round(x, digits: int = 5):
@@ -48,135 +52,281 @@ def fmt(value: float | None, unit: str = "") -> str:
 
 
 def cell(v: dict | None, unit: str) -> str:
+    """mean ± std (bootstrap over takes and seed variance combined); the mean alone when the std is 0."""
     if not v:
         return "—"
-    return f"{fmt(v['mean'], unit)} ± {fmt(v['std'], unit)}" if v["n"] > 1 else fmt(v["mean"], unit)
+    return f"{fmt(v['mean'], unit)} ± {fmt(v['std'], unit)}" if v.get("std") else fmt(v["mean"], unit)
 
 
-def _part_text(p: dict) -> str:
-    label = COLUMNS.get(p["metric"], (p["metric"],))[0]
+def label_of(col: str) -> str:
+    c = COLUMNS.get(col)
+    return f"{c.label} ({c.unit})" if c and c.unit else (c.label if c else col)
+
+
+def part_text(p: dict) -> str:
+    label = COLUMNS[p["metric"]].label if p["metric"] in COLUMNS else p["metric"]
     if p["status"] == "not evaluated":
         return f"{p['a']} vs {p['b']} ({label}, {p['table']}): missing {', '.join(p['missing'])}"
-    unit = COLUMNS.get(p["metric"], ("", ""))[1]
-    other = "" if p["metric_b"] == p["metric"] else f" {COLUMNS[p['metric_b']][0]}"
-    return (f"{p['a']} {cell(p['a_value'], unit)} vs {p['b']}{other} {cell(p['b_value'], unit)} "
-            f"({label}, {p['table']}; difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}): {p['status']}")
+    unit = COLUMNS[p["metric"]].unit if p["metric"] in COLUMNS else ""
+    other = "" if p["metric_b"] == p["metric"] else f" {COLUMNS[p['metric_b']].label}"
+    margin = f", margin {fmt(p['margin'], unit)}" if p.get("margin") else ""
+    paired = ""
+    if p.get("a_paired") is not None and (fmt(p["a_paired"], unit) != fmt(p["a_value"]["mean"], unit)
+                                          or fmt(p["b_paired"], unit) != fmt(p["b_value"]["mean"], unit)):
+        paired = f" on the {p['items']} items both predict: {fmt(p['a_paired'], unit)} vs {fmt(p['b_paired'], unit)};"
+    text = (f"{p['a']} {cell(p['a_value'], unit)} vs {p['b']}{other} {cell(p['b_value'], unit)} "
+            f"({label}, {p['table']};{paired} difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}{margin}; "
+            f"{p['people']} people, {p['takes']} takes): {p['status']}")
+    return text + (f" ({p['reason']})" if p.get("reason") else "")
+
+
+def tally_text(t: dict) -> str:
+    return (f"{t['holds']} hold, {t['fails']} fail, {t['inconclusive']} inconclusive, {t['insufficient data']} "
+            f"insufficient data, {t['unusable']} unusable, {t['not evaluated']} not evaluated; "
+            f"{t['by_construction']} true by construction (not counted)")
+
+
+def _claims(doc: dict) -> list[str]:
+    lines = ["## Paper claims on held-out people", "",
+             f"{tally_text(doc['tally'])}. A part **holds** only when the paired difference lies in the claimed "
+             "direction by more than its 2σ bar, which combines a cluster bootstrap over takes with the seed variance; "
+             f"fewer than {doc['min_people']} held-out people or {doc['min_takes']} held-out takes make it "
+             "**insufficient data**; a recognition part in a table where the ground truth does not score best is "
+             "**unusable**; a claim that holds whatever the data is **by construction** and not counted.", "",
+             "| claim | paper | status | numbers |", "|---|---|---|---|"]
+    for c in doc["claims"]:
+        nums = "<br>".join(part_text(p) for p in c["parts"])
+        lines.append(f"| {c['text']} | {c['paper']} | **{c['status']}** | {nums} |")
+    return lines + [""]
+
+
+def _copying(doc: dict) -> list[str]:
+    if not doc.get("copying"):
+        return []
+    lines = ["## Copying and memorising", "",
+             "Every model against the baselines that copy the history (repeat its last cycle) and memorise the "
+             "training people (the nearest training window's future), on best-of-K ADE (root-relative), paired on the "
+             "windows both predict. A model that does not beat the nearest training window on held-out people reports "
+             "memorisation; one that does not beat repeating the last cycle reports copying.", ""]
+    by_table: dict[str, dict[str, dict[str, dict]]] = {}
+    keys = {"nearest-window": "nearest", "repeat-cycle-60": "long", "zero-velocity": "zero"}
+    for c in doc["copying"]:
+        by_table.setdefault(c["table"], {}).setdefault(c["label"], {})[keys.get(c["baseline"], "own")] = c
+    for tid, rows in by_table.items():
+        lines += [f"Table `{tid}` (ADE difference model − baseline, its 2σ bar, and the verdict):", "",
+                  "| model | vs nearest training window | vs repeat last cycle (own history) "
+                  "| vs repeat last cycle (60 frames) | vs zero-velocity |", "|---|---|---|---|---|"]
+        for label, cs in rows.items():
+            cells = []
+            for key in ("nearest", "own", "long", "zero"):
+                c = cs.get(key)
+                cells.append("—" if not c else f"{fmt(c['difference'], 'm')} m, 2σ {fmt(c['bar'], 'm')}: "
+                                               f"{'beats' if c['status'] == 'holds' else 'does not beat'} ({c['status']})")
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+        lines.append("")
+    memo = [c for c in doc["copying"] if c["baseline"] == "nearest-window" and c["status"] != "holds"]
+    if memo:
+        lines += ["Not beating the nearest training window (reporting memorisation): "
+                  + "; ".join(f"{c['label']} in `{c['table']}` ({c['status']})" for c in memo) + ".", ""]
+    return lines
+
+
+def _shape(doc: dict) -> list[str]:
+    if not doc.get("shape"):
+        return []
+    lines = ["## With and without the shape terms (issue 17)", "",
+             "Each stochastic model against its ablation without the seam layer, fixed bone lengths and floor term: "
+             f"APD and best-of-K ADE, and whether the model without them is within "
+             f"{round(100 * doc['shape'][0]['tolerance'])}% of the model with them. A measurement, not a claim.", "",
+             "| model | table | metric | with | without | without / with | within |", "|---|---|---|---|---|---|---|"]
+    for s in doc["shape"]:
+        unit = COLUMNS[s["metric"]].unit
+        lines.append(f"| {s['with']} | {s['table']} | {COLUMNS[s['metric']].label} | {cell(s['with_value'], unit)} | "
+                     f"{cell(s['without_value'], unit)} | {fmt(s['ratio'])} | {'yes' if s['within'] else 'no'} |")
+    return lines + [""]
 
 
 def _comparisons(doc: dict) -> list[str]:
     """One small table per comparison and table: columns are the rows compared, lines the metrics."""
     from .rows import COMPARISONS
     out = []
-    by_table = {t["id"]: {r["id"]: r for r in t["rows"] if not r.get("skipped")} for t in doc["tables"]}
+    by_table = {t["id"]: {r["id"]: r for r in t["rows"] if r.get("values")} for t in doc["tables"]}
     for c in COMPARISONS:
         blocks = []
         for tid in c.tables:
-            rows = [by_table.get(tid, {}).get(r) for r in c.rows]
-            shown = [r for r in rows if r]
+            shown = [r for r in (by_table.get(tid, {}).get(x) for x in c.rows) if r]
             if len(shown) < 2:
                 continue
             blocks += [f"Table `{tid}`:", "", "| metric | " + " | ".join(r["label"] for r in shown) + " |",
                        "|---|" + "---|" * len(shown)]
             for m in c.metrics:
                 if any(m in r["values"] for r in shown):
-                    blocks.append(f"| {COLUMNS[m][0]}{f' ({COLUMNS[m][1]})' if COLUMNS[m][1] else ''} | "
-                                  + " | ".join(cell(r["values"].get(m), COLUMNS[m][1]) for r in shown) + " |")
+                    blocks.append(f"| {label_of(m)} | " + " | ".join(cell(r["values"].get(m), COLUMNS[m].unit)
+                                                                    for r in shown) + " |")
             blocks.append("")
         if blocks:
             out += [f"## Side by side: {c.text} ({c.paper})", ""] + blocks
     return out
 
 
-def markdown(doc: dict) -> str:
-    lines = ["# Results", "",
-             "Written by `python -m export evaluate` from `configs/eval.json` and `export/eval/rows.py`; "
-             "the same numbers are on the site's Results page (`results.html`). Do not edit by hand.", "",
-             f"- K = {doc['k']} futures per history for stochastic models (1 for deterministic ones); "
-             f"training seeds {doc['training_seeds']} × sampling seeds {doc['sampling_seeds']}.",
-             "- Every cell is mean ± std over runs (training seed × sampling seed; deterministic models and the "
-             "oracle have one run per training seed). A paper claim **holds** only when the difference lies in the "
-             "claimed direction by more than twice the std of the difference (√(s_a² + s_b²)), **fails** when it lies "
-             "the other way by as much, and is **inconclusive** otherwise.",
-             "- Accuracy columns are the mean over the table's actions of each action's accuracy (LCP-VAE's "
-             "\"mean class accuracy\"): about 90% of the test windows are walking, so plain accuracy would reward a "
-             "classifier that maps every static input to \"walk\".",
-             "- Predictions go through the Python predictor (`export/sample/predictor.py`), the code path the "
-             "end-to-end vectors tie to the browser.",
-             f"- Evaluation wall time: {doc['seconds']:.0f} s.", "",
-             "Served models evaluated (hash of `public/models/manifest.json`):", ""]
-    lines += [f"- `{mid}`: `{h}`" for mid, h in sorted(doc["models"].items())] + [""]
+def _rows(doc: dict) -> list[str]:
+    """Every row once, with what it is: the baselines' rules, the variants, the labelled extras."""
+    seen, lines = set(), ["## Rows", ""]
+    for t in doc["tables"]:
+        for r in t["rows"]:
+            if r["id"] in seen or not r.get("note"):
+                continue
+            seen.add(r["id"])
+            lines.append(f"- **{r['label']}** ({r['kind']}): {r['note']}.")
+    return lines + [""] if len(lines) > 2 else []
 
-    lines += ["## Paper claims", "", "| claim | paper | status | numbers |", "|---|---|---|---|"]
-    for c in doc["claims"]:
-        nums = "<br>".join(_part_text(p) for p in c["parts"])
-        lines.append(f"| {c['text']} | {c['paper']} | **{c['status']}** | {nums} |")
-    lines.append("")
 
-    lines += _comparisons(doc)
+def _variants(doc: dict) -> list[str]:
+    v = doc.get("variants") or {}
+    lines = ["## Choices that change the numbers", "",
+             "- **Eq. 4** is reported both ways: as printed, (1/2L) Σᵢ ‖ẑᵢ − z̃ᵢ‖₂² (mm², column "
+             "\"Eq. 4 as printed\"), and as the authors' code computes it, the mean of the unsquared per-pose norm "
+             "(1/2L) Σᵢ ‖ẑᵢ − z̃ᵢ‖₂ (mm, \"Eq. 4 as the authors' code\"). Ranking of the models by each:"]
+    for e in v.get("eq4", []):
+        lines.append(f"  - `{e['table']}`: {'the same order' if e['same_order'] else 'different orders'} "
+                     f"(printed: {', '.join(e['printed'])}; code: {', '.join(e['code'])})")
+    lines += ["- **Keyposes' interpolation**: the paper's tables use linear interpolation between keyposes (rows "
+              "\"linear\", the claims' rows); the site serves the refinement network (row \"refined: served\").",
+              f"- **Keypose extraction**: the paper's text stops splitting a segment on the mean error (served and "
+              f"trained); the authors' code stops on the maximum error (row \"max-error extraction\", an evaluation "
+              f"variant). Keyposes per {v.get('keypose_history_frames', 30)}-frame held-out history:", ""]
+    rules = v.get("keypose_rules") or {}
+    if rules:
+        lines += ["| action | histories | mean-error rule | max-error rule |", "|---|---|---|---|"]
+        lines += [f"| {a} | {r['histories']} | {fmt(r['mean'])} | {fmt(r['max'])} |" for a, r in rules.items()]
+    return lines + [""]
 
-    lines += ["## Sanity checks", "",
-              "Each check can fail, and a failure is reported here rather than tuned away. A pose-based classifier "
-              "may prefer a frozen pose to real motion: Keyposes (appendix 6.6, Tables 16-17) reports the same of its "
-              "full classifier, which is why it argues for the motion-only one.", "",
-              "| check | table | expected | measured | result |", "|---|---|---|---|---|"]
+
+def _sanity(doc: dict) -> list[str]:
+    lines = ["## Sanity checks", "",
+             "Each check can fail, and a failure is reported here rather than tuned away. Where the ground truth does "
+             "not score best on a classifier, that table's recognition claims are unusable.", "",
+             "| check | table | expected | measured | result |", "|---|---|---|---|---|"]
     for s in doc["sanity"]:
         lines.append(f"| {s['text']} | {s['table'] or '—'} | {fmt(s['expected'])} | {fmt(s['measured'])} | "
                      f"{'pass' if s['passed'] else '**FAIL**'} |")
-    lines.append("")
+    return lines + [""]
 
-    lines += ["## Classifiers", "",
-              f"Trained on the training split only, on {doc['classifier_config']['snippet_frames']}-frame snippets "
-              "(mirrors added), accuracy in % of test snippets. Longer motions are classified by averaging the "
-              "scores of their sliding snippets.", "",
-              "**Risk: one take per action.** Every action has a single capture. Only walking has a second take "
-              "(the walker clips); the other test snippets are the later frames of the very take the classifier "
-              "was trained on. A classifier can therefore learn to recognise the take (its performer, its exact "
-              "poses) instead of the action, and its accuracy on other motion, generated or real, says less about "
-              "the action than the numbers suggest. The per-group accuracies below show how it transfers.", "",
-              "| classifier | train acc. | test acc. (snippets) | test acc. (mean per action) | walker (2nd take) | "
-              "getup_faceup tail | spin tail | chance |",
-              "|---|---|---|---|---|---|---|---|"]
-    for name, r in doc["classifiers"].items():
-        g = r["test_groups"]
-        lines.append(f"| {name} | {r['train_accuracy']:.1f} | {r['test_accuracy']:.1f} | "
-                     f"{r['test_balanced_accuracy']:.1f} | "
-                     + " | ".join(f"{g[k]['accuracy']:.1f}" if k in g else "—" for k in ("walker", "getup_faceup", "spin"))
-                     + f" | {r['chance']:.1f} |")
-    lines += ["", "Both classifiers have a class for no motion, trained on training poses held still; a future "
-                  "classified as it counts as wrong for every action. What a held pose (the first training frame, "
-                  "still for a whole snippet) is classified as:", ""]
-    lines += [f"- {name}: **{r['motionless_class']}**" for name, r in doc["classifiers"].items()
-              if r.get("motionless_class")]
-    lines += ["", "What the test snippets were classified as (snippet counts):", ""]
-    for name, r in doc["classifiers"].items():
-        lines.append(f"- {name}: " + "; ".join(
-            f"{g} → " + ", ".join(f"{a} {n}" for a, n in v.get("predicted", {}).items())
-            for g, v in r["test_groups"].items()))
-    lines.append("")
 
-    for t in doc["tables"]:
-        cols = t["columns"]
-        lines += [f"## {t['title']} (`{t['id']}`)", "", t["about"], "",
-                  (f"History {t['history_frames']} frames, " if t["history_frames"] else
-                   "History: each model's own length (in its notes), ")
-                  + f"horizon {t['horizon_frames']} frames ({t['horizon_frames'] / doc['fps']:.1f} s), K = {t['k']}, "
-                  + (f"{t['windows']} windows" if t["windows"] else "windows") + f" from {', '.join(t['clips'])}.", "",
-                  "| row | runs | " + " | ".join(f"{COLUMNS[c][0]}{f' ({COLUMNS[c][1]})' if COLUMNS[c][1] else ''}"
-                                                 for c in cols) + " |",
-                  "|---|---|" + "---|" * len(cols)]
-        notes = []
-        for r in t["rows"]:
-            if r.get("skipped"):
-                notes.append(f"- {r['label']}: skipped, {r['skipped']}")
-                continue
-            lines.append(f"| {r['label']} | {r['runs']} | " + " | ".join(cell(r["values"].get(c), COLUMNS[c][1])
-                                                                       for c in cols) + " |")
-            notes += [f"- {r['label']}: {n}" for n in r["notes"]]
-            for col, (lo, hi) in r.get("intervals", {}).items():
-                notes.append(f"- {r['label']}: {COLUMNS[col][0]} 95% bootstrap interval (first run) "
-                             f"[{fmt(lo)}, {fmt(hi)}]")
-        notes += [f"- {n}" for n in t.get("notes", [])]
-        lines += [""] + notes + ([""] if notes else [])
+def _classifiers(doc: dict) -> list[str]:
+    clf = doc["classifiers"]
+    lines = ["## Classifiers", "",
+             f"Trained on the training people only, on {doc['classifier_config']['snippet_frames']}-frame snippets "
+             "(mirrors added); accuracy in % of held-out snippets (people no classifier saw). Longer motions are "
+             "classified by averaging the scores of their sliding snippets. The configuration of each was chosen by "
+             "leave-one-person-out validation inside the training people, never by the test:", ""]
+    for kind in ("pose_gru", "moac"):
+        sel = clf.get(kind, {}).get("selection")
+        if not sel:
+            continue
+        lines.append(f"- {kind}: chose **{sel['chosen']}** ({sel['steps']} steps per fold; folds "
+                     f"{', '.join(sel['people'])}): " + "; ".join(f"{c['name']} {fmt(c['score'], '%')}"
+                                                                 for c in sel["candidates"]))
+    lines += ["", "| classifier | train acc. | held-out acc. (snippets) | held-out acc. (mean per action) | chance |",
+              "|---|---|---|---|---|"]
+    for name, r in clf.items():
+        lines.append(f"| {name} | {fmt(r['train_accuracy'], '%')} | {fmt(r['test_accuracy'], '%')} | "
+                     f"{fmt(r['test_balanced_accuracy'], '%')} | {fmt(r['chance'], '%')} |")
+    actions = sorted({a for r in clf.values() for a in r.get("test_groups", {})})
+    names = [n for n in clf if not n.endswith("_shuffled")]
+    lines += ["", "Held-out accuracy per action (%; snippets in brackets):", "",
+              "| action | " + " | ".join(names) + " |", "|---|" + "---|" * len(names)]
+    for a in actions:
+        g = [clf[n]["test_groups"].get(a) for n in names]
+        lines.append(f"| {a} ({next((x['snippets'] for x in g if x), 0)}) | "
+                     + " | ".join(fmt(x["accuracy"], "%") if x else "—" for x in g) + " |")
+    lines += ["", "A motionless snippet (a training pose held still) is classified as: "
+              + "; ".join(f"{n}: **{r['motionless_class']}**" for n, r in clf.items() if r.get("motionless_class")) + ".",
+              ""]
+    return lines
+
+
+def _table(doc: dict, t: dict) -> list[str]:
+    lines = [f"## {t['title']} (`{t['id']}`)" + (" — in-sample" if t.get("in_sample") else ""), "", t["about"], "",
+             f"History {t['history_frames']} frames (context up to {t['context_frames']}), horizon "
+             f"{t['horizon_frames']} frames ({t['horizon_frames'] / doc['fps']:.1f} s), K = {t['k']}, stride "
+             f"{t['stride']}: {t['windows']} windows ({t['items']} items) from {t['takes']} takes of "
+             f"{len(t['people'])} people ({', '.join(t['people'])}); actions {', '.join(t['actions'])}.", ""]
+    if t.get("exceptions"):
+        lines += ["Horizon exceptions (no held-out take of the action holds history + horizon; never padded): "
+                  + ", ".join(e["action"] for e in t["exceptions"]) + ".", ""]
+    if t.get("mmade"):
+        mm = t["mmade"]
+        lines += [f"MMADE/MMFDE: similar histories are those whose last root-relative pose lies within "
+                  f"{fmt(mm['threshold'])} m (whole pose) of the window's, the smallest threshold giving a median set of "
+                  f"at least 5 (median {fmt(mm['median_set'])}); the window itself is always in its set, so no set is "
+                  f"empty: {mm['alone']} windows have only themselves and count with their own truth (their term is "
+                  f"their ADE), as in DLow. Sensitivity below at half ({fmt(mm['half']['threshold'])} m, "
+                  f"{mm['half']['alone']} alone) and double ({fmt(mm['double']['threshold'])} m, "
+                  f"{mm['double']['alone']} alone).", ""]
+    rows = [r for r in t["rows"] if not r.get("skipped")]
+    notes = []
+    for key, title in SECTIONS:
+        cols = [c for c in t["columns"] if COLUMNS[c].section == key]
+        if not cols:
+            continue
+        lines += [f"**{title}**", "", "| row | windows | runs | " + " | ".join(label_of(c) for c in cols) + " |",
+                  "|---|---|---|" + "---|" * len(cols)]
+        for r in rows:
+            lines.append(f"| {r['label']} | {r.get('items', 0)}/{t['items']} | {r.get('runs', 0)} | "
+                         + " | ".join(cell(r.get("values", {}).get(c), COLUMNS[c].unit) for c in cols) + " |")
+        lines.append("")
+    if t.get("mmade") and any("mmade_half" in r.get("values", {}) for r in rows):
+        lines += ["MMADE / MMFDE sensitivity to the threshold (m):", "",
+                  "| row | MMADE ½ | MMADE | MMADE 2× | MMFDE ½ | MMFDE | MMFDE 2× |", "|---|---|---|---|---|---|---|"]
+        for r in rows:
+            v = r.get("values", {})
+            lines.append(f"| {r['label']} | " + " | ".join(cell(v.get(c), "m") for c in (
+                "mmade_half", "mmade", "mmade_double", "mmfde_half", "mmfde", "mmfde_double")) + " |")
+        lines.append("")
+    acts = t["actions"]
+    if t["truth"] and not t.get("in_sample") and any(r.get("by_action", {}).get("ade") for r in rows):
+        lines += ["ADE best of K (root-relative, m) per action:", "",
+                  "| row | " + " | ".join(acts) + " |", "|---|" + "---|" * len(acts)]
+        for r in rows:
+            per = r.get("by_action", {}).get("ade", {})
+            lines.append(f"| {r['label']} | " + " | ".join(fmt(per.get(a)) for a in acts) + " |")
+        lines.append("")
+    for r in t["rows"]:
+        if r.get("skipped"):
+            notes.append(f"- {r['label']}: skipped, {r['skipped']}")
+        notes += [f"- {r['label']}: {n}" for n in r.get("notes", [])]
+    notes += [f"- {n}" for n in t.get("notes", [])]
+    return lines + notes + ([""] if notes else [])
+
+
+def markdown(doc: dict) -> str:
+    lines = ["# Results", "",
+             "Written by `python -m export evaluate` from `configs/eval.json` and `export/eval/rows.py`; the same numbers "
+             "are on the site's Results page (`results.html`) and in `docs/MODEL_CARD.md`. Do not edit by hand.", "",
+             "- Every table with a claim is cut from the held-out people's takes (world frame); the in-sample table is "
+             "labelled and backs no claim. Every row of a table predicts from the same windows, each model from the "
+             "last frames of its own history length.",
+             f"- K = {doc['k']} futures per history for stochastic models (1 for deterministic ones); training seeds "
+             f"{doc['training_seeds']} × sampling seeds {doc['sampling_seeds']} (a row says how many runs it has).",
+             f"- A cell is the mean over runs ± the combined std: a cluster bootstrap over takes ({doc['bootstrap']['rounds']} "
+             "resamples; windows overlap and cluster within a take) and the std over runs.",
+             "- Accuracy columns are the mean over the table's actions of each action's accuracy (LCP-VAE's "
+             "\"mean class accuracy\").",
+             "- Predictions go through the Python predictor (`export/sample/predictor.py`), the code path the "
+             "end-to-end vectors tie to the browser; futures are the raw outputs (bone-projected rows are labelled extras).",
+             f"- Evaluation wall time: {doc['seconds']:.0f} s, of which {doc.get('classifier_seconds', 0):.0f} s "
+             "choosing and training the classifiers (cached in `runs/eval` after the first run)"
+             + (f"; training the extra seeds and ablations before it (`make results`, seeds already in `runs/seeds` "
+                f"kept): {doc['seed_training_seconds']:.0f} s." if doc.get("seed_training_seconds") is not None else "."), "",
+             "Served models evaluated (hash of the manifest they were read from):", ""]
+    lines += [f"- `{mid}`: `{h}`" for mid, h in sorted(doc["models"].items())] + [""]
+    if doc.get("summary"):
+        lines += ["## In short", ""] + [f"- {s}" for s in doc["summary"]] + [""]
+    lines += _claims(doc) + _copying(doc) + _shape(doc) + _rows(doc) + _comparisons(doc) + _variants(doc) + _sanity(doc)
+    lines += _classifiers(doc)
+    for t in sorted(doc["tables"], key=lambda t: bool(t.get("in_sample"))):
+        lines += _table(doc, t)
     if doc["skipped"]:
         lines += ["## Rows not evaluated yet", ""]
         lines += [f"- {s['label']} (`{s['row']}`): {s['reason']}" for s in doc["skipped"]]

@@ -31,9 +31,15 @@ def frame_errors(positions: np.ndarray, a: int, b: int) -> np.ndarray:
     return np.sqrt((d * d).reshape(len(d), -1).sum(-1))
 
 
-def extract(positions: np.ndarray, threshold: float = THRESHOLD) -> list[int]:
+# How a segment decides it needs no further keypose: "mean" (the paper's text, what every model here is
+# trained and served with) or "max" (the authors' released code; an evaluation variant only, issue 18).
+RULES = ("mean", "max")
+
+
+def extract(positions: np.ndarray, threshold: float = THRESHOLD, rule: str = "mean") -> list[int]:
     """Keypose frame indices of a motion [F, J, 3]: first and last frame, then recursively the frame
-    of largest error inside each segment until the segment's mean interior error is below threshold.
+    of largest error inside each segment until the segment's mean interior error is below threshold
+    (rule="max": until its largest interior error is, which finds more keyposes).
 
     Ties go to the earliest frame (both languages). A motion of one frame has one keypose.
     """
@@ -42,6 +48,9 @@ def extract(positions: np.ndarray, threshold: float = THRESHOLD) -> list[int]:
         raise ValueError(f"positions must be [frames, joints, 3], got shape {list(positions.shape)}")
     if not threshold > 0:
         raise ValueError(f"the keypose threshold must be positive, got {threshold}")
+    if rule not in RULES:
+        raise ValueError(f"the keypose rule must be one of {RULES}, got {rule!r}")
+    stop = np.mean if rule == "mean" else np.max
     n = len(positions)
     if n < 2:
         return list(range(n))
@@ -52,7 +61,7 @@ def extract(positions: np.ndarray, threshold: float = THRESHOLD) -> list[int]:
         if b - a < 2:
             continue
         inner = frame_errors(positions, a, b)[1:-1]
-        if inner.mean() < threshold:
+        if stop(inner) < threshold:
             continue
         m = a + 1 + int(np.argmax(inner))
         keys.add(m)

@@ -26,16 +26,24 @@ describe('results page', () => {
   });
   afterAll(async () => { await session?.close(); });
 
-  it('renders every table with its rows and the stated horizon', async () => {
+  it('renders every table with its rows and the stated horizon, held-out tables first', async () => {
     expect(await page.locator('.table-block').count()).toBe(results.tables.length);
     for (const t of results.tables) {
       const block = page.locator(`.table-block[data-table="${t.id}"]`);
-      expect(await block.locator('tbody tr').count()).toBe(t.rows.length);
+      expect(await block.locator('table.main tbody tr').count()).toBe(t.rows.length);
       expect(await block.locator('.table-meta').textContent()).toContain(`horizon ${t.horizon_frames} frames`);
     }
+    const order = await page.locator('.table-block').evaluateAll((els) => els.map((e) => e.getAttribute('data-table')));
+    const inSample = results.tables.filter((t: { in_sample?: boolean }) => t.in_sample).map((t: { id: string }) => t.id);
+    expect(order.slice(order.length - inSample.length)).toEqual(inSample);
     await session.screenshot('results-table.png', page.locator('.table-block').nth(1));
     expect(await page.locator('.claim').count()).toBe(results.claims.length);
+    for (const c of results.claims) {
+      expect(await page.locator(`.claim[data-claim="${c.id}"] .badge`).textContent()).toBe(c.status);
+    }
     expect(await page.locator('[data-sanity]').count()).toBe(results.sanity.length);
+    expect(await page.locator('[data-copying]').count()).toBe((results.copying ?? []).length);
+    expect(await page.locator('#summary li').count()).toBe((results.summary ?? []).length);
   });
 
   it('draws diversity against context and the length histograms', async () => {

@@ -108,3 +108,33 @@ def test_nearest_window_turns_and_moves_the_training_future_onto_the_query():
     expected = rotate_about_y(world[2, n:], angle) + shift
     assert B.nearest_window(query, hs, fs) == pytest.approx(expected, abs=1e-9)
     assert B.nearest_window(world[1, :n], hs, fs) == pytest.approx(world[1, n:], abs=1e-9)
+
+
+def test_nearest_indices_is_nearest_index_for_every_query():
+    n = 10
+    world = world_windows(40, n + 4, seed=3)
+    canonical = np.stack([facing.canonicalise(w, n - 1, SKELETON)[0] for w in world])
+    queries = np.stack([facing.canonicalise(w, n - 1, SKELETON)[0] for w in world_windows(9, n, seed=4)])
+    got = B.nearest_indices(queries, canonical[:, :n], chunk=4)
+    assert got.tolist() == [B.nearest_index(q, canonical[:, :n]) for q in queries]
+    assert B.nearest_indices(canonical[:5, :n], canonical[:, :n]).tolist() == [0, 1, 2, 3, 4]   # itself
+    with pytest.raises(ValueError, match="training histories"):
+        B.nearest_indices(queries[:, :5], canonical[:, :n])
+
+
+def test_the_harness_lookup_is_nearest_window_over_every_training_window(deepmimic):
+    """export/eval/harness.nearest_futures streams the bank clip by clip; it must pick what nearest_window
+    picks over the whole bank, and give a training window its own future back."""
+    from export.data.windows import windows
+    from export.eval.harness import nearest_futures
+    clips = [c for c in deepmimic.values() if c.split.role != "test"][:4]
+    h, t = 10, 12
+    bank = windows(clips, "train", h + t, h, stride=3, mirror=True)
+    hs, fs = np.stack([w.positions[:h] for w in bank]), np.stack([w.positions[h:] for w in bank])
+    walk = deepmimic["walker_walk_forward"].positions
+    queries = [walk[s:s + h] for s in (0, 7, len(walk) - h)]
+    got = nearest_futures(queries, clips, h, t, stride=3)
+    for q, g in zip(queries, got):
+        assert g == pytest.approx(B.nearest_window(q, hs, fs), abs=1e-9)
+    own = clips[0].positions
+    assert nearest_futures([own[6:6 + h]], clips, h, t, stride=3)[0] == pytest.approx(own[6 + h:6 + h + t], abs=1e-9)

@@ -6,7 +6,8 @@ import pytest
 
 from export.eval import metrics as M
 from export.eval.fid import FeatureSpace, frechet
-from export.eval.stats import FAILS, HOLDS, INCONCLUSIVE, MISSING, combine, compare, summarise
+from export.eval import stats as S
+from export.eval.stats import FAILS, HOLDS, INCONCLUSIVE, MISSING, combine, decide, summarise
 from export.ops.dct_smoothness import smoothness
 
 
@@ -139,17 +140,107 @@ def test_summary_and_the_two_sigma_rule():
     s = summarise([1.0, 2.0, 3.0])
     assert s == {"mean": 2.0, "std": 1.0, "n": 3}
     assert summarise([float("nan")]) is None
-    a, b = {"mean": 2.0, "std": 0.1, "n": 9}, {"mean": 1.0, "std": 0.1, "n": 9}
-    assert compare(a, b, "greater")[0] == HOLDS
-    assert compare(a, b, "less")[0] == FAILS
-    assert compare(a, {"mean": 1.8, "std": 0.1, "n": 9}, "greater")[0] == INCONCLUSIVE   # 0.2 < 2 * 0.141
-    assert compare({"mean": 1.0, "std": 0.1, "n": 9}, b, "not_less")[0] == HOLDS
-    assert compare({"mean": 0.5, "std": 0.1, "n": 9}, b, "not_less")[0] == FAILS
-    assert compare(None, b, "greater")[0] == MISSING
+    assert decide(1.0, 0.2, "greater") == HOLDS and decide(1.0, 0.2, "less") == FAILS
+    assert decide(0.2, 0.28, "greater") == INCONCLUSIVE                    # 0.2 < its bar
+    assert decide(1.0, 0.0, "greater") == INCONCLUSIVE                     # never holds on a zero bar
+    assert decide(-1.0, 0.0, "greater") == INCONCLUSIVE
+    # "similar or better" within a margin: the whole 2-sigma interval must lie above -margin
+    assert decide(-1.0, 2.0, "not_less", margin=5.0) == HOLDS
+    assert decide(-1.0, 6.0, "not_less", margin=5.0) == INCONCLUSIVE       # a 67-point bar decides nothing
+    assert decide(-9.0, 2.0, "not_less", margin=5.0) == FAILS
+    assert decide(3.0, 1.0, "not_greater", margin=1.0) == FAILS
+    with pytest.raises(ValueError, match="positive margin"):
+        decide(0.0, 1.0, "not_less")
+    assert decide(float("nan"), 1.0, "greater") == MISSING
     assert combine([HOLDS, INCONCLUSIVE]) == INCONCLUSIVE and combine([HOLDS, FAILS]) == FAILS
     assert combine([HOLDS, HOLDS]) == HOLDS and combine([HOLDS, MISSING]) == MISSING
+    assert combine([HOLDS, S.INSUFFICIENT]) == S.INSUFFICIENT and combine([S.INSUFFICIENT, FAILS]) == FAILS
+    assert combine([HOLDS, S.UNUSABLE]) == S.UNUSABLE
     with pytest.raises(ValueError, match="direction"):
-        compare(a, b, "bigger")
+        decide(1.0, 1.0, "bigger")
+
+
+def hand_units():
+    """Six items in three takes (two actions, two people): take t0 = items 0, 1; t1 = 2, 3; t2 = 4, 5."""
+    return S.units(["t0", "t0", "t1", "t1", "t2", "t2"], ["walk", "walk", "walk", "walk", "run", "run"],
+                   [1, 1, 2, 2, 2, 2])
+
+
+def test_aggregate_plain_and_balanced_by_hand():
+    u = hand_units()
+    v = np.array([1.0, 3.0, 5.0, 7.0, 10.0, np.nan])
+    assert S.aggregate(v, u) == pytest.approx(26 / 5)                      # NaN items are left out
+    assert S.aggregate(v, u, balanced=True) == pytest.approx((4.0 + 10.0) / 2)   # walk 4, run 10
+
+
+def test_cluster_bootstrap_resamples_whole_takes():
+    u = hand_units()
+    v = np.array([1.0, 3.0, 5.0, 7.0, 10.0, 10.0])
+    w = np.array([[1.0, 1.0, 1.0], [2.0, 0.0, 1.0], [0.0, 0.0, 3.0], [3.0, 0.0, 0.0]])
+    got = S.resampled(v, u, w)
+    # take sums 4, 12, 20 over 2 items each: (w . sums) / (2 * sum w)
+    assert got == pytest.approx([36 / 6, 28 / 6, 60 / 6, 12 / 6])
+    bal = S.resampled(v, u, w, balanced=True)
+    assert bal[0] == pytest.approx((4 + 10) / 2) and bal[1] == pytest.approx((2.0 + 10) / 2)
+    assert np.isnan(S.resampled(v, u, np.array([[0.0, 0.0, 0.0]]))[0])
+    draws = S.bootstrap_weights(3, 500, seed=1)
+    assert draws.shape == (500, 3) and (draws.sum(1) == 3).all()
+    assert S.cluster_std(v, u, draws) > 0                                  # deterministic values still spread
+    single = S.units(["t"] * 4, ["a"] * 4, [1] * 4)
+    assert S.cluster_std(np.arange(4.0), single, S.bootstrap_weights(1, 50)) == 0.0
+
+
+def test_paired_comparison_needs_people_and_takes():
+    u = hand_units()
+    a, b = np.array([1.0, 1.1, 1.0, 1.2, 0.9, 1.0]), np.array([2.0, 2.1, 2.2, 2.0, 1.9, 2.0])
+    w = S.bootstrap_weights(3, 400, seed=0)
+    c = S.compare(a, b, u, w, 0.0, 0.0, "less")
+    assert c["status"] == S.INSUFFICIENT and (c["people"], c["takes"]) == (2, 3)   # 3 takes < 5
+    assert c["difference"] == pytest.approx(np.mean(a) - np.mean(b)) and c["bar"] > 0
+    takes = [f"t{i}" for i in range(6)]
+    u6 = S.units(takes, ["walk"] * 6, [1, 1, 1, 2, 2, 2])
+    w6 = S.bootstrap_weights(6, 400, seed=0)
+    assert S.compare(a, b, u6, w6, 0.0, 0.0, "less")["status"] == HOLDS
+    assert S.compare(a, b, u6, w6, 0.0, 5.0, "less")["status"] == INCONCLUSIVE     # a large seed std
+    one = S.units(takes, ["walk"] * 6, [1] * 6)
+    assert S.compare(a, b, one, w6, 0.0, 0.0, "less")["status"] == S.INSUFFICIENT  # one person
+    gap = a.copy()
+    gap[:3] = np.nan                                                       # compared on the items both have
+    c = S.compare(gap, b, u6, w6, 0.0, 0.0, "less")
+    assert c["items"] == 3 and c["b_paired"] == pytest.approx(b[3:].mean())
+    assert S.compare(np.full(6, np.nan), b, u6, w6, 0, 0, "less")["status"] == MISSING
+
+
+def test_binomial_band_by_hand():
+    lo, hi = S.binomial_band(100, 0.5, 0.99)
+    assert lo == pytest.approx(0.37) and hi == pytest.approx(0.63)          # scipy's binom.ppf, n = 100
+    assert S.binomial_band(10, 0.0) == (0.0, 0.0)
+    narrow, wide = S.binomial_band(1000, 0.05), S.binomial_band(50, 0.05)
+    assert narrow[1] - narrow[0] < wide[1] - wide[0]
+
+
+def test_eq4_unsquared_is_the_mean_norm_where_printed_is_the_mean_squared_norm():
+    still = np.ones((10, 2, 3))
+    assert M.transition_smoothness_unsquared(still, still) == pytest.approx(0.0, abs=1e-12)
+    rng = np.random.default_rng(0)
+    a, b = rng.normal(size=(12, 2, 3)), rng.normal(size=(10, 2, 3))
+    from export.ops.dct import dct_basis
+    z = np.concatenate([a[-10:], b]).reshape(20, -1)
+    d = dct_basis(20, 5)
+    r = np.linalg.norm(z - d @ d.T @ z, axis=1)
+    assert M.transition_smoothness_unsquared(a, b) == pytest.approx(r.mean())
+    assert M.transition_smoothness(a, b) == pytest.approx((r ** 2).mean())
+    with pytest.raises(ValueError, match="10 frames on each side"):
+        M.transition_smoothness_unsquared(a[:4], b)
+
+
+def test_ade_fde_many_is_ade_fde_per_truth():
+    rng = np.random.default_rng(3)
+    futures, truths = rng.normal(size=(4, 7, 3, 3)), rng.normal(size=(5, 6, 3, 3))
+    for rel in (True, False):
+        ade, fde = M.ade_fde_many(futures, truths, root_relative=rel)
+        for m in range(5):
+            assert (ade[m], fde[m]) == pytest.approx(M.ade_fde(futures, truths[m], root_relative=rel))
 
 
 # --- ADE/FDE, APD, MMADE/MMFDE (DLow) and the read-out's plausibility checks ---------------------------

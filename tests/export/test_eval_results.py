@@ -1,4 +1,5 @@
-"""The committed results belong to the committed models: same hashes, and RESULTS.md agrees with results.json."""
+"""The committed results belong to the committed models: same hashes, and RESULTS.md agrees with results.json
+(docs/MODEL_CARD.md is checked in test_model_card.py)."""
 import json
 
 from export.eval.report import RESULTS_JSON, RESULTS_MD, markdown
@@ -16,3 +17,15 @@ def test_committed_results_name_the_committed_models():
 def test_committed_markdown_is_written_from_the_committed_json():
     assert RESULTS_MD.read_text() == markdown(json.loads(RESULTS_JSON.read_text())), \
         "docs/RESULTS.md and public/results.json differ: run `python -m export evaluate`"
+
+
+def test_committed_results_are_on_held_out_people():
+    results = json.loads(RESULTS_JSON.read_text())
+    for t in results["tables"]:
+        held_out = t["source"] == "test"
+        assert held_out or t["in_sample"], f"table {t['id']} is neither held-out nor labelled in-sample"
+        if held_out and t["truth"]:
+            rows = {r["id"] for r in t["rows"] if r.get("values")}
+            assert {"nearest-window", "repeat-cycle-60"} <= rows, f"table {t['id']} lacks the copying baselines"
+    in_sample = {t["id"] for t in results["tables"] if t.get("in_sample")}
+    assert not any(p["table"] in in_sample for c in results["claims"] for p in c["parts"])

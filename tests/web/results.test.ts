@@ -20,9 +20,11 @@ describe('formatting', () => {
     expect(fmt(Number.NaN)).toBe('—');
   });
 
-  it('writes mean ± std, or the mean alone for one run', () => {
+  it('writes mean ± std, or the mean alone when the std is 0', () => {
     expect(cell({ mean: 0.5, std: 0.02, n: 9 })).toBe('0.500 ± 0.020');
     expect(cell({ mean: 0.5, std: 0, n: 1 })).toBe('0.500');
+    // one run still has the take bootstrap's spread
+    expect(cell({ mean: 0.5, std: 0.03, n: 1, seed_std: 0, boot_std: 0.03 })).toBe('0.500 ± 0.030');
     expect(cell(undefined)).toBe('—');
   });
 });
@@ -72,9 +74,41 @@ describe('results.json', () => {
     expect(doc.tables.length).toBeGreaterThan(0);
     for (const t of doc.tables) {
       expect(t.horizon_frames).toBeGreaterThan(0);
-      if (t.truth) expect(t.history_frames).toBeGreaterThan(0);   // others may use each model's own
+      if (t.truth) expect(t.history_frames).toBeGreaterThan(0);
       expect(t.k).toBeGreaterThan(0);
     }
-    expect(doc.claims.every((c) => ['holds', 'fails', 'inconclusive', 'not evaluated'].includes(c.status))).toBe(true);
+    const statuses = ['holds', 'fails', 'inconclusive', 'insufficient data', 'unusable', 'not evaluated', 'by construction'];
+    expect(doc.claims.every((c) => statuses.includes(c.status))).toBe(true);
+  });
+
+  it('tables back claims only on held-out people, and each held-out table has the copying baselines', () => {
+    const doc = parseResults(JSON.parse(readFileSync(RESULTS, 'utf8')));
+    const inSample = new Set(doc.tables.filter((t) => t.in_sample).map((t) => t.id));
+    for (const t of doc.tables) expect(t.source === 'test' || t.in_sample).toBe(true);
+    for (const c of doc.claims) for (const p of c.parts) expect(inSample.has(p.table)).toBe(false);
+    for (const t of doc.tables.filter((x) => x.source === 'test' && x.truth)) {
+      const ids = new Set(t.rows.filter((r) => r.values).map((r) => r.id));
+      expect(ids.has('nearest-window') && ids.has('repeat-cycle-60')).toBe(true);
+    }
+    expect(doc.summary!.length).toBeGreaterThan(0);
+    expect(doc.summary!.length).toBeLessThanOrEqual(5);
+  });
+});
+
+describe('claim parts', async () => {
+  const { partText } = await import('../../web/src/results/render');
+  const doc = { columns: { ade: { label: 'ADE', unit: 'm', better: 'lower' } } } as unknown as Parameters<typeof partText>[0];
+  const base = { table: 'heldout_2s', a: 'wat-rnn', b: 'zero-velocity', metric: 'ade', metric_b: 'ade', direction: 'less', missing: [],
+    a_value: { mean: 0.7, std: 0.03, n: 3 }, b_value: { mean: 0.8, std: 0.05, n: 1 }, difference: -0.1, bar: 0.04, people: 6, takes: 19, items: 70 };
+
+  it('state the numbers, the bar, the people and takes and the status', () => {
+    const t = partText(doc, { ...base, status: 'holds', a_paired: 0.7, b_paired: 0.8 });
+    expect(t).toBe('wat-rnn 0.700 ± 0.030 vs zero-velocity 0.800 ± 0.050 (ADE, heldout_2s; difference -0.100, 2σ 0.040; 6 people, 19 takes): holds');
+  });
+
+  it('give the paired means when a row predicted fewer windows, and the reason of an unusable part', () => {
+    const t = partText(doc, { ...base, status: 'unusable', a_paired: 0.65, b_paired: 0.8, items: 40, reason: 'the classifier failed its check' });
+    expect(t).toContain('on the 40 items both predict: 0.650 vs 0.800;');
+    expect(t).toMatch(/: unusable \(the classifier failed its check\)$/);
   });
 });

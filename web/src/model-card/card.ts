@@ -87,8 +87,19 @@ export function findings(results: Results): Finding[] {
     const where = `${t.title.charAt(0).toLowerCase()}${t.title.slice(1)}`;
     const zero = t.rows.find((r) => r.id === 'zero-velocity' && r.values);
     const oracle = t.rows.find((r) => r.kind === 'oracle' && r.values);
+    // The evaluation's paired comparisons against standing still (2σ bar over takes and seeds), when it made them.
+    const paired = (results.copying ?? []).filter((c) => c.table === t.id && c.baseline === 'zero-velocity' && c.a_value && c.b_value);
+    if (t.truth && paired.length) {
+      for (const c of paired) {
+        const verdict: Verdict = c.status === 'holds' ? 'can' : c.status === 'fails' ? 'cannot' : 'unknown';
+        out.push({ verdict, source: `${src} (paired on its windows, 2σ bar over takes and seeds)`,
+          text: `${c.label} ${verdict === 'can' ? 'comes closer to' : verdict === 'cannot' ? 'comes no closer to' : 'is not shown to come closer to'} `
+            + `the captured future than standing still: best-of-${t.k} ADE over ${seconds(t.horizon_frames, fps)} ${withUnit(results, 'ade', c.a_value!.mean)} `
+            + `against ${withUnit(results, 'ade', c.b_value!.mean)} for zero-velocity (${where}, ${t.windows ?? '?'} histories).` });
+      }
+    }
     const mpjpe = t.columns.includes('mpjpe_h_best') ? 'mpjpe_h_best' : t.columns.includes('mpjpe_1s_best') ? 'mpjpe_1s_best' : null;
-    if (t.truth && zero && mpjpe) {
+    if (t.truth && zero && mpjpe && !paired.length) {
       const z = val(zero, mpjpe)!;
       for (const r of bestPerGroup(results, t, mpjpe)) {
         if (r.id === zero.id) continue;
@@ -156,8 +167,8 @@ export function findings(results: Results): Finding[] {
 
 /** Statements that repeat per model, merged into one per table: the subject, and the text around it. */
 const MERGEABLE: { re: RegExp; lead: (m: RegExpExecArray) => string }[] = [
-  { re: /^(.+?) (comes closer to|comes no closer to) the captured future than standing still: (best-of-\d+ MPJPE (?:at|over) [^ ]+ s) (.+?) against (.+?) for zero-velocity \((.+)\)\.$/,
-    lead: (m) => `${m[2] === 'comes closer to' ? 'Closer to' : 'No closer to'} the captured future than standing still (${m[3]}; zero-velocity ${m[5]}; ${m[6]})` },
+  { re: /^(.+?) (comes closer to|comes no closer to|is not shown to come closer to) the captured future than standing still: (best-of-\d+ (?:MPJPE|ADE) (?:at|over) [^ ]+ s) (.+?) against (.+?) for zero-velocity \((.+)\)\.$/,
+    lead: (m) => `${m[2] === 'comes closer to' ? 'Closer to' : m[2] === 'comes no closer to' ? 'No closer to' : 'Not shown closer to'} the captured future than standing still (${m[3]}; zero-velocity ${m[5]}; ${m[6]})` },
   { re: /^(.+?) (draws different futures for one history): diversity (.+?) \((.+)\)\.$/,
     lead: (m) => `Different futures for one history (diversity; ${m[4]})` },
   { re: /^(.+?) (draws a single future): diversity 0 \((.+)\)\.$/, lead: (m) => `A single future (diversity 0; ${m[3]})` },
@@ -296,14 +307,19 @@ export function failureModes(results: Results | null, index: ClipIndex, manifest
     const short = index.clips.filter((c) => c.frames < longest && !c.loops).map((c) => c.name.replace(/_/g, ' '));
     if (short.length) out.push(`Clips shorter than the longest history (${longest} frames) cannot give that model a history: ${short.join(', ')}.`);
   }
-  out.push('With one performer per action, a model has seen one way to do each action; expect futures of unseen histories to drift towards '
-    + 'a training take (not measured here).');
-  out.push('Skeletons have 18 joints, without hands, foot orientation or face, and the root\'s horizontal travel is removed: figures walk on the spot.');
+  const memo = (results?.copying ?? []).filter((c) => c.baseline === 'nearest-window' && c.status !== 'holds');
+  if (memo.length) {
+    out.push(`Not shown to beat the nearest training window's future on held-out people (memorisation is not ruled out): `
+      + `${[...new Set(memo.map((c) => `${c.label} (${c.table})`))].join(', ')}.`);
+  }
+  out.push('Few people per action: a model has seen a few ways to do each action, and the held-out people are few; a comparison '
+    + 'resting on too few people or takes is reported as insufficient data.');
+  out.push('Skeletons have 18 joints, without hands, foot orientation or face.');
   return out;
 }
 
 /** A few of each table's columns for the card (the Results page has them all). */
-export const CARD_COLUMNS = ['mpjpe_h_best', 'mpjpe_1s_best', 'ade', 'div', 'acc_moac', 'smooth', 'length'];
+export const CARD_COLUMNS = ['ade', 'fde', 'mpjpe_h_best', 'mpjpe_1s_best', 'apd', 'div', 'acc_moac', 'smooth', 'length'];
 
 export function cardColumns(t: Table): string[] {
   const cols = CARD_COLUMNS.filter((c) => t.columns.includes(c));

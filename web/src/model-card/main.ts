@@ -1,6 +1,6 @@
 // The Model card page: the data, the served models, what they can and cannot do (numbers read from
-// results.json when the page runs), known failure modes, and how to cite. docs/MODEL_CARD.md is the
-// same card in the repository.
+// results.json when the page runs), known failure modes, and how to cite. docs/MODEL_CARD.md is written
+// from the same results.json by the evaluation (export/eval/card.py), with the same five-line summary.
 import '../explainer/page.css';
 import './model-card.css';
 import type { ClipIndex, Manifest } from '../contract/types';
@@ -101,7 +101,7 @@ function resultsSection(results: Results | null, problem: string | null, manifes
   });
   return section('measured', 'What the models can and cannot do',
     el('p', {}, `Every number here is read from results.json when this page opens (python -m export evaluate; K = ${results.k}, `,
-      `training seeds ${results.training_seeds.join(', ')}, sampling seeds ${results.sampling_seeds.join(', ')}; mean ± std over runs). `,
+      `training seeds ${results.training_seeds.join(', ')}, sampling seeds ${results.sampling_seeds.join(', ')}; mean over runs ± a std combining a bootstrap over held-out takes with the seeds). `,
       el('a', { href: './results.html' }, 'The Results page'), ' has every column, the per-action lengths and the paper claims in full.'),
     stale.length ? el('div', { class: 'stale', role: 'note', 'data-testid': 'stale-models' }, el('strong', {}, 'Not measured as served: '),
       el('ul', {}, ...stale.map((x) => el('li', {}, `${x.label}: ${x.problem}.`)))) : null,
@@ -109,7 +109,7 @@ function resultsSection(results: Results | null, problem: string | null, manifes
     el('h3', {}, 'The recognition numbers rest on these classifiers'),
     el('ul', {}, ...classifierCaveats(results).map((c) => el('li', {}, c))),
     el('details', { class: 'card-tables' }, el('summary', {}, el('h3', { class: 'inline-heading' }, `Selected columns (${tables.length} tables)`)),
-      el('p', { class: 'muted' }, '↓ lower is better, ↑ higher is better. MPJPE best of K: the sample closest to the captured future.'),
+      el('p', { class: 'muted' }, '↓ lower is better, ↑ higher is better. ADE and MPJPE best of K: the sample closest to the captured future.'),
       ...tables));
 }
 

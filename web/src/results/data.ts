@@ -1,19 +1,24 @@
 // The shape of public/results.json (written by export/eval/report.py) and a check that names
 // what is missing, so a stale or broken file gives a readable message on the page.
 
-export interface Stat { mean: number; std: number; n: number }
+/** mean over runs ± std: the cluster bootstrap over takes and the seed std (over runs) combined. */
+export interface Stat { mean: number; std: number; n: number; seed_std?: number; boot_std?: number }
 
 export interface Row {
   id: string;
   label: string;
-  kind: 'model' | 'oracle' | 'noise';
+  kind: 'model' | 'oracle' | 'noise' | 'baseline' | 'projected';
   group: string;
   note: string;
   notes: string[];
   skipped?: string;
   runs?: number;
   k?: number;
+  items?: number;
+  history_frames?: number | null;
+  parent?: string;
   values?: Record<string, Stat>;
+  by_action?: Record<string, Record<string, number>>;
   intervals?: Record<string, [number, number]>;
   lengths?: Record<string, number[]>;
   hashes?: Record<string, string>;
@@ -24,14 +29,23 @@ export interface Table {
   title: string;
   about: string;
   source: string;
-  history_frames: number | null;   // null: each model's own (stated in the row's notes)
+  history_frames: number | null;   // every row reads the last frames of its own history length
+  context_frames?: number;
   horizon_frames: number;
   truth: boolean;
   k: number;
   windows: number | null;
+  items?: number;
+  takes?: number;
+  people?: string[];
+  in_sample?: boolean;
+  exceptions?: { action: string; horizon_frames: number }[];
+  mmade?: { threshold: number; median_set: number; alone: number;
+    half: { threshold: number; median_set: number; alone: number }; double: { threshold: number; median_set: number; alone: number } };
   clips: string[];
   actions: string[];
   columns: string[];
+  extra_columns?: string[];
   length_edges: number[];
   rows: Row[];
   notes: string[];
@@ -40,11 +54,25 @@ export interface Table {
 export interface ClaimPart {
   table: string; a: string; b: string; metric: string; metric_b: string; direction: string; status: string;
   a_value: Stat | null; b_value: Stat | null; difference: number | null; bar: number | null; missing: string[];
+  margin?: number; people?: number; takes?: number; items?: number; a_paired?: number; b_paired?: number; reason?: string;
 }
 
-export interface Claim { id: string; paper: string; text: string; status: string; parts: ClaimPart[] }
+/** A claim's status: holds, fails, inconclusive, insufficient data, unusable, not evaluated or by construction. */
+export interface Claim { id: string; paper: string; text: string; status: string; reason?: string; parts: ClaimPart[] }
 
-export interface Sanity { id: string; table: string | null; text: string; expected: number | null; measured: number; passed: boolean }
+export interface Sanity {
+  id: string; table: string | null; text: string; expected: number | null; measured: number; passed: boolean;
+  metric?: string; low?: number; high?: number;
+}
+
+/** A model against a baseline that copies (repeat the last cycle) or memorises (the nearest training window). */
+export interface Copying extends ClaimPart { row: string; label: string; baseline: string; baseline_label: string; verdict: string }
+
+/** Issue 17's shape terms: a model with and without them. */
+export interface ShapeRow {
+  table: string; with: string; without: string; metric: string; with_value: Stat; without_value: Stat;
+  ratio: number; within: boolean; tolerance: number; difference: number | null; bar: number | null;
+}
 
 export interface ClassifierReport {
   train_accuracy: number;
@@ -56,6 +84,7 @@ export interface ClassifierReport {
   chance: number;
   train_snippets: number;
   test_snippets: number;
+  selection?: { chosen: string; people: string[]; steps: number; candidates: { name: string; score: number; folds: Record<string, number> }[] };
 }
 
 export interface Column { label: string; unit: string; better: 'lower' | 'higher' | '' }
@@ -73,6 +102,15 @@ export interface Results {
   classifier_config: { snippet_frames: number };
   sanity: Sanity[];
   claims: Claim[];
+  copying?: Copying[];
+  shape?: ShapeRow[];
+  variants?: { eq4: { table: string; printed: string[]; code: string[]; same_order: boolean }[];
+    keypose_rules: Record<string, { mean: number; max: number; histories: number }>; keypose_history_frames: number };
+  tally?: Record<string, number>;
+  bootstrap?: { rounds: number; seed: number };
+  min_people?: number;
+  min_takes?: number;
+  classifier_seconds?: number;
   tables: Table[];
   skipped: { row: string; label: string; reason: string }[];
   context_plot: string[];
@@ -93,7 +131,7 @@ export function parseResults(doc: unknown): Results {
   need(typeof doc === 'object' && doc !== null, 'not a JSON object');
   const r = doc as Partial<Results>;
   need(r.format === 'motion-futures/results', `format must be "motion-futures/results", got ${JSON.stringify(r.format)}`);
-  need(r.version === 1, `unsupported version ${JSON.stringify(r.version)}`);
+  need(r.version === 1 || r.version === 2, `unsupported version ${JSON.stringify(r.version)}`);
   for (const key of ['tables', 'claims', 'sanity', 'skipped'] as const) need(Array.isArray(r[key]), `field ${key} must be a list`);
   need(typeof r.classifiers === 'object' && r.classifiers !== null, 'field classifiers is missing');
   need(typeof r.columns === 'object' && r.columns !== null, 'field columns is missing');

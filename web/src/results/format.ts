@@ -13,10 +13,10 @@ export function fmt(value: number | null | undefined, unit = ''): string {
   return value.toExponential(1);
 }
 
-/** "mean ± std" (just the mean for a single run). */
+/** "mean ± std" (the std combines the take bootstrap and the seed std); just the mean when the std is 0. */
 export function cell(stat: Stat | null | undefined, unit = ''): string {
   if (!stat) return '—';
-  return stat.n > 1 ? `${fmt(stat.mean, unit)} ± ${fmt(stat.std, unit)}` : fmt(stat.mean, unit);
+  return stat.std > 0 ? `${fmt(stat.mean, unit)} ± ${fmt(stat.std, unit)}` : fmt(stat.mean, unit);
 }
 
 export interface Scale { (v: number): number; domain: [number, number]; ticks: number[] }
