@@ -103,6 +103,30 @@ def about(text: str, gap, tolerance=None) -> dict:
     return {"text": text, "float32_vs_float64_gap": gap, "tolerance": tolerance, "rule": RULE}
 
 
+def curve_gap(single, wide) -> float:
+    """Largest |v32 - v64| of Eq. 8's curves (Prediction.curves "variance") of two predictions of the same
+    case, the served graphs and the graphs widened to float64; inf when their stops differ. The stop
+    margin a case must keep is derive() of it: the tolerance rule applied to the quantity the stop
+    decision compares with delta, so a difference within that tolerance cannot flip a stop."""
+    a = next((c for c in single.curves if c["id"] == "variance"), None)
+    b = next((c for c in wide.curves if c["id"] == "variance"), None)
+    if a is None or b is None:
+        return 0.0
+    if list(single.lengths) != list(wide.lengths):
+        return math.inf
+    return max((float(np.abs(np.asarray(x, np.float64) - np.asarray(y, np.float64)).max())
+                for x, y in zip(a["series"], b["series"])), default=0.0)
+
+
+def keeps_its_stop_margin(pred, wide) -> bool:
+    """A prediction whose every stop decision (its `margins`) keeps 1.5 x the tolerance of its own
+    Eq. 8 curve (curve_gap against the same case in float64): a difference within that tolerance
+    cannot flip one of its stops, so its lengths are the same on any machine."""
+    if not pred.margins:
+        return True
+    return min(pred.margins) >= 1.5 * derive(min(curve_gap(pred, wide), 1e300))
+
+
 def tolerance_of(doc: dict, model: str | None = None) -> float:
     """The tolerance a committed vector file states (per model where it has one per model)."""
     tol = doc["about"]["tolerance"]

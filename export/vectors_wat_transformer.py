@@ -10,5 +10,5 @@ from .vectors_wat import wat_e2e_cases
 E2E_CASES = [("cmu_10_04", 3, ["kick", "punch", "cartwheel"]), ("cmu_49_11", 90, ["dance_ballet_modern"])]
 
 
-def wat_transformer_e2e_cases(entry: dict, predictor, margin: float) -> list[dict]:
-    return wat_e2e_cases(entry, predictor, margin, E2E_CASES)
+def wat_transformer_e2e_cases(entry: dict, predictor, keeps) -> list[dict]:
+    return wat_e2e_cases(entry, predictor, keeps, E2E_CASES)

@@ -46,4 +46,5 @@ class Float64Session:
 
     def run(self, names: list[str], feeds: dict[str, np.ndarray]) -> list[np.ndarray]:
         wide = {k: (v.astype(np.float64) if v.dtype == np.float32 else v) for k, v in feeds.items()}
-        return self._eval.run(names, wide)
+        with np.errstate(over="ignore"):      # the reference sigmoid's exp(-x) overflows to 1/inf = 0, correctly
+            return self._eval.run(names, wide)

@@ -5,8 +5,9 @@ lies within CONTACT_BAND of the floor; the floor is the least-squares plane y = 
 their lowest foot points, found by a few rounds of: fit, re-select contacts. It starts from a low
 percentile of the lowest foot height, never the single lowest point, so a T-pose frame or a one-frame
 glitch cannot lift every other frame, and a slope (a capture volume whose floor rises 2% along a walk)
-is followed instead of floating the far end. A tilt is fitted only where the contacts spread over at
-least MIN_SPREAD metres; otherwise the floor is level (an in-place motion says nothing about a slope).
+is followed instead of floating the far end. A tilt is fitted only along a principal ground axis of the
+contacts that spreads over at least MIN_SPREAD metres (a walk's direction; across it the feet are only a
+stride apart); otherwise the floor is level (an in-place motion says nothing about a slope).
 Each frame is then shifted vertically by the floor height under its root, which keeps bone lengths.
 """
 from __future__ import annotations
@@ -28,6 +29,16 @@ def foot_height(positions: np.ndarray, skeleton: Skeleton = SKELETON) -> np.ndar
     return positions[..., idx, 1].min(axis=-1)
 
 
+def _axes(xz: np.ndarray) -> np.ndarray:
+    """The principal axes of points on the ground [n, 2]: rows, the first the widest spread."""
+    d = xz - xz.mean(0)
+    cov = d.T @ d
+    # the 2x2 symmetric eigenproblem in closed form (so TypeScript can do exactly the same)
+    t = 0.5 * np.arctan2(2 * cov[0, 1], cov[0, 0] - cov[1, 1])
+    u = np.array([np.cos(t), np.sin(t)])
+    return np.stack([u, np.array([-u[1], u[0]])])
+
+
 def floor_plane(positions: np.ndarray, skeleton: Skeleton = SKELETON) -> tuple[float, float, float]:
     """(a, b, c) of the floor y = a x + b z + c of a clip [F, J, 3] (world frame, y up)."""
     idx = [skeleton.index(n) for n in FEET]
@@ -41,15 +52,19 @@ def floor_plane(positions: np.ndarray, skeleton: Skeleton = SKELETON) -> tuple[f
         if contact.sum() < 3:
             break
         pts = low[contact]
-        spread = np.ptp(pts[:, [0, 2]], axis=0).max()
-        if spread >= MIN_SPREAD:
-            design = np.column_stack([pts[:, 0], pts[:, 2], np.ones(len(pts))])
-            a2, b2, c2 = np.linalg.lstsq(design, pts[:, 1], rcond=None)[0]
-            if np.hypot(a2, b2) <= MAX_SLOPE:
-                a, b, c = float(a2), float(b2), float(c2)
-                continue
-        a = b = 0.0
-        c = float(np.median(pts[:, 1]))
+        # A tilt only along a ground axis the contacts spread over (a walk's direction); across it the
+        # two feet are a stride apart and their height difference is no slope.
+        axes = _axes(pts[:, [0, 2]])
+        along = (pts[:, [0, 2]] - pts[:, [0, 2]].mean(0)) @ axes.T           # [n, 2]
+        wide = [k for k in range(2) if np.ptp(along[:, k]) >= MIN_SPREAD]
+        design = np.column_stack([along[:, wide], np.ones(len(pts))])
+        fit = np.linalg.lstsq(design, pts[:, 1], rcond=None)[0]
+        slope = sum((fit[i] * axes[k] for i, k in enumerate(wide)), np.zeros(2))
+        if np.hypot(*slope) > MAX_SLOPE:
+            slope, fit = np.zeros(2), np.array([np.median(pts[:, 1])])
+        centre = pts[:, [0, 2]].mean(0)
+        a, b = float(slope[0]), float(slope[1])
+        c = float(fit[-1] - slope @ centre)
     return a, b, c
 
 

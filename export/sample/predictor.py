@@ -15,7 +15,7 @@ from ..paths import MODELS_DIR
 from ..ops.envelope import check
 from .canonical import to_canonical
 from .guard import cut_out_of_bounds
-from .request import Prediction, Request, check_history, check_request
+from .request import Prediction, PredictError, Request, check_history, check_request
 from .runner import GraphRunner
 
 
@@ -34,7 +34,10 @@ class Predictor:
         check_request(req, self.entry, self.manifest["actions"], self.manifest["fps"])
         env = self.params.get("envelope")
         warnings = check(to_canonical(history[-n:])[0], env, self.manifest["fps"]) if env else []
-        pred = self._predict(history, req)
+        try:
+            pred = self._predict(history, req)
+        except PredictError as e:   # a refusal also names the envelope warnings, which may be its real cause
+            raise PredictError(refusal_with_warnings(str(e), warnings)) from None
         cut_out_of_bounds(pred.futures, pred.lengths, pred.samples, history[-n:])
         if pred.ghosts is not None:      # keypose ghosts past a cut go with it
             for i, s in enumerate(pred.samples):
@@ -46,6 +49,13 @@ class Predictor:
 
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         raise NotImplementedError
+
+
+def refusal_with_warnings(message: str, warnings: list[dict]) -> str:
+    """A refusal followed by the history's envelope warnings (twin of factory.ts refusalWithWarnings)."""
+    if not warnings:
+        return message
+    return f"{message}. The history is outside the training range: " + " ".join(w["message"] for w in warnings)
 
 
 # The one place that knows which predictor runs which method (twin of web/src/predictor/factory.ts).

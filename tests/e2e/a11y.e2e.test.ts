@@ -67,7 +67,7 @@ describe('the model card', () => {
       expect(await s.page.locator('[data-verdict="can"] li').count()).toBeGreaterThan(0);
       expect(await s.page.locator('[data-verdict="cannot"] li').count()).toBeGreaterThan(0);
       const bib = (await s.page.locator('#bibtex-papers').textContent())!;
-      for (const key of ['mao2022weakly', 'aliakbarian2021contextually', 'kiciroglu2022keyposes']) expect(bib).toContain(key);
+      for (const key of ['mao2022weakly', 'aliakbarian2021contextually', 'kiciroglu2022keyposes', 'peng2018deepmimic', 'cmumocap']) expect(bib).toContain(key);
       expect(await s.page.locator('#bibtex-project').textContent()).toContain('@software{motion_futures');
       const { scroll, client } = await s.page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, client: document.documentElement.clientWidth }));
       expect(scroll).toBeLessThanOrEqual(client);

@@ -14,74 +14,11 @@ from export.data.bvh import joint_positions as bvh_positions, read_bvh
 CMU = Path(__file__).resolve().parents[2] / "data" / "cmu"
 UNIT = 0.0254 / 0.45   # CMU's "length 0.45": one unit is 1/0.45 inch
 
-ASF = """# a hand-made skeleton: a leg (thigh, shin) and an arm
-:version 1.10
-:name tiny
-:units
-  mass 1.0
-  length 0.45
-  angle deg
-:documentation
-   made by hand for the tests
-:root
-   order TX TY TZ RX RY RZ
-   axis XYZ
-   position 0 0 0
-   orientation 0 0 0
-:bonedata
-  begin
-     id 1
-     name thigh
-     direction 0 -1 0
-     length 9
-     axis 0 0 90  XYZ
-    dof rx ry rz
-    limits (-160.0 20.0)
-           (-70.0 70.0)
-           (-60.0 70.0)
-  end
-  begin
-     id 2
-     name shin
-     direction 0 -1 0
-     length 4.5
-     axis 0 0 0  XYZ
-    dof rx
-  end
-  begin
-     id 3
-     name arm
-     direction 1 0 0
-     length 2
-     axis 0 0 0  XYZ
-  end
-:hierarchy
-  begin
-    root thigh arm
-    thigh shin
-  end
-"""
+FIXTURES = Path(__file__).resolve().parents[1] / "fixtures"
+# A hand-made skeleton (a leg: thigh, shin; and an arm) and its motion; tests/web/asf-amc.test.ts reads them too.
+ASF = (FIXTURES / "tiny.asf").read_text()
 
-AMC = """#!OML:ASF tiny.asf
-:FULLY-SPECIFIED
-:DEGREES
-1
-root 0 0 0 0 0 0
-thigh 0 0 0
-shin 0
-2
-root 1 2 3 0 90 0
-thigh 0 0 0
-shin 0
-3
-root 0 0 0 0 0 0
-thigh 90 0 0
-shin 90
-4
-root 0 0 0 90 90 0
-thigh 0 0 0
-shin 0
-"""
+AMC = (FIXTURES / "tiny.amc").read_text()
 
 # By hand, in file units (x UNIT for metres); points are root, thigh end, shin end, arm end.
 EXPECTED = np.array([

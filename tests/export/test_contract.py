@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import export.data.clip_json as clip_json
+import export.vectors_asf as vectors_asf
 import export.vectors_retarget as vectors_retarget
 from export.contract import ContractError, load_json
 from export.data.clip_json import read_clip
@@ -224,15 +225,16 @@ def _stretched(points: np.ndarray) -> np.ndarray:
 
 @pytest.mark.parametrize("name", OP_FAMILIES)
 def test_a_1e_3_change_of_an_op_familys_input_fails_its_check(name, monkeypatch):
-    """Families without graphs: the motion they are computed from (clips, BVH points) stretched by
-    1 + 1e-3 along x is caught (along one axis: retargeting is blind to a uniform scale). prng and lcp have no such input (integer seeds; generated conditions): a
-    1e-3 change of their results is caught instead."""
+    """Families without graphs: the motion they are computed from (clips, BVH or ASF/AMC points) stretched by
+    1 + 1e-3 along x is caught (along one axis: retargeting is blind to a uniform scale). prng, lcp and
+    metrics have no such input (integer seeds; generated numbers): a 1e-3 change of their results is
+    caught instead."""
     committed = _committed(name)
-    if name in ("prng", "lcp"):
+    if name in ("prng", "lcp", "metrics"):
         fresh = _scaled_results(json.loads(render(FAMILIES[name]())))
     else:
         read = clip_json.read_clip
-        points = vectors_retarget.joint_positions
+        points, asf_points = vectors_retarget.joint_positions, vectors_asf.joint_positions
 
         def scaled_clip(path):
             clip = read(path)
@@ -240,6 +242,7 @@ def test_a_1e_3_change_of_an_op_familys_input_fails_its_check(name, monkeypatch)
             return clip
         monkeypatch.setattr(clip_json, "read_clip", scaled_clip)
         monkeypatch.setattr(vectors_retarget, "joint_positions", lambda bvh: _stretched(points(bvh)))
+        monkeypatch.setattr(vectors_asf, "joint_positions", lambda asf, amc: _stretched(asf_points(asf, amc)))
         fresh = json.loads(render(FAMILIES[name]()))
     assert first_difference(committed, fresh, tolerance_of(committed), name) is not None
 

@@ -203,7 +203,9 @@ def test_served_config_records_the_issue_settings_and_ablations_share_its_budget
     served = load_config("lcp_vae.json")
     assert (served["history_frames"], served["future_frames"]) == (19, 60)
     for name, variant in [("lcp_cvae_h.json", "cvae_h"), ("lcp_cvae_zc.json", "cvae_zc")]:
-        ab = json.loads((CONFIGS_DIR / "ablations" / name).read_text())
+        # an ablation extends the served config and changes only the variant (config.py "extends")
+        assert json.loads((CONFIGS_DIR / "ablations" / name).read_text())["changes"] == {"model.variant": variant}
+        ab = load_config(CONFIGS_DIR / "ablations" / name)
         assert ab["model"]["variant"] == variant
         assert ab["train"] == served["train"] and ab["history_frames"] == 19 and ab["future_frames"] == 60
         assert {k: v for k, v in ab["model"].items() if k != "variant"} == \

@@ -38,75 +38,11 @@ describe('ASF/AMC matches the Python vector', () => {
   }
 });
 
-// The hand-made skeleton and motion of tests/export/test_asf_amc.py, with the same expectations.
-const ASF = `# a hand-made skeleton: a leg (thigh, shin) and an arm
-:version 1.10
-:name tiny
-:units
-  mass 1.0
-  length 0.45
-  angle deg
-:documentation
-   made by hand for the tests
-:root
-   order TX TY TZ RX RY RZ
-   axis XYZ
-   position 0 0 0
-   orientation 0 0 0
-:bonedata
-  begin
-     id 1
-     name thigh
-     direction 0 -1 0
-     length 9
-     axis 0 0 90  XYZ
-    dof rx ry rz
-    limits (-160.0 20.0)
-           (-70.0 70.0)
-           (-60.0 70.0)
-  end
-  begin
-     id 2
-     name shin
-     direction 0 -1 0
-     length 4.5
-     axis 0 0 0  XYZ
-    dof rx
-  end
-  begin
-     id 3
-     name arm
-     direction 1 0 0
-     length 2
-     axis 0 0 0  XYZ
-  end
-:hierarchy
-  begin
-    root thigh arm
-    thigh shin
-  end
-`;
+// The hand-made skeleton and motion of tests/export/test_asf_amc.py (tests/fixtures/tiny.asf, .amc), with the same expectations.
+const fixture = (name: string) => readFileSync(new URL(`../fixtures/${name}`, import.meta.url), 'utf8');
+const ASF = fixture('tiny.asf');
 
-const AMC = `#!OML:ASF tiny.asf
-:FULLY-SPECIFIED
-:DEGREES
-1
-root 0 0 0 0 0 0
-thigh 0 0 0
-shin 0
-2
-root 1 2 3 0 90 0
-thigh 0 0 0
-shin 0
-3
-root 0 0 0 0 0 0
-thigh 90 0 0
-shin 90
-4
-root 0 0 0 90 90 0
-thigh 0 0 0
-shin 0
-`;
+const AMC = fixture('tiny.amc');
 
 // By hand, in file units; points are root, thigh end, shin end, arm end (see the Python test for why).
 const EXPECTED = [

@@ -84,3 +84,34 @@ describe('odd histories give bounded futures or a named refusal', () => {
     }, 120_000);
   }
 });
+
+describe('a refusal of an out-of-range history names the range', () => {
+  it('Keyposes on raised histories: refused with the envelope warning, or predicted with it', async () => {
+    const entry = manifest.models.find((m) => m.method === 'keyposes');
+    if (!entry) return;
+    const predictor = nodePredictor(manifest, entry.id);
+    const n = entry.params.history_frames;
+    let checked = 0;
+    for (const c of index.clips.filter((x) => x.role === 'test' && x.frames >= n + 60).slice(0, 12)) {
+      const all = (JSON.parse(read(c.file)) as ClipDoc).positions;
+      const s = Math.floor((all.length - n) / 2);       // mid-take: many takes begin standing still
+      const h = Float32Array.from(all.slice(s, s + n).flat(2));
+      const req = { k: 2, seed: 1, horizonFrames: 30 };
+      try {
+        await predictor.predict({ positions: h, frames: n, joints: J }, req);
+      } catch {
+        continue;                                        // too little motion even unchanged: not a case
+      }
+      const raised = h.map((v, i) => (i % 3 === 1 ? v + 0.7 : v));
+      checked++;
+      try {
+        const pred = await predictor.predict({ positions: raised, frames: n, joints: J }, req);
+        expect(pred.warnings?.length ?? 0).toBeGreaterThan(0);
+      } catch (err) {
+        expect(err).toBeInstanceOf(PredictError);
+        expect((err as Error).message).toContain('outside the training range');
+      }
+    }
+    expect(checked).toBeGreaterThanOrEqual(3);
+  }, 120_000);
+});

@@ -355,6 +355,12 @@ export const PAPERS_BIBTEX = `@inproceedings{mao2022weakly,
   volume  = {37},
   number  = {4},
   year    = {2018}
+}
+
+@misc{cmumocap,
+  title        = {{CMU} Graphics Lab Motion Capture Database},
+  howpublished = {\\url{http://mocap.cs.cmu.edu}},
+  note         = {The database was created with funding from NSF EIA-0196217}
 }`;
 
 /** This project's BibTeX; the version comes from the site (package.json at build time). */

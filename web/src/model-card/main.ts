@@ -131,7 +131,7 @@ function citeSection(): HTMLElement {
   return section('cite', 'How to cite',
     el('p', {}, 'If you use this site or its figures, cite the method papers and this project (CITATION.cff in the repository has the same entry).'),
     el('h3', {}, 'This project'), block('bibtex-project', projectBibtex(SITE_VERSION), 'BibTeX for this project'),
-    el('h3', {}, 'The papers and the data'), block('bibtex-papers', PAPERS_BIBTEX, 'BibTeX for the three papers and the DeepMimic data'));
+    el('h3', {}, 'The papers and the data'), block('bibtex-papers', PAPERS_BIBTEX, 'BibTeX for the three papers and the data (DeepMimic, CMU)'));
 }
 
 async function main(): Promise<void> {

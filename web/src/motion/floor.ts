@@ -2,7 +2,8 @@
 // The foot is the lower of ankle and toe; contact frames are those whose lowest foot point lies within
 // CONTACT_BAND of the floor; the floor is the least-squares plane y = a x + b z + c through them,
 // starting from a low percentile (never the single lowest point, so a T-pose frame or a glitch
-// cannot lift the clip), tilted only where the contacts spread over MIN_SPREAD metres.
+// cannot lift the clip), tilted only along a principal ground axis of the contacts that spreads over
+// MIN_SPREAD metres (a walk's direction; across it the feet are only a stride apart).
 import type { Skeleton } from '../contract/types';
 
 export const FEET = ['right_ankle', 'right_toe', 'left_ankle', 'left_toe'];
@@ -19,35 +20,53 @@ function percentile(values: number[], p: number): number {
   return i + 1 < v.length ? v[i] + (pos - i) * (v[i + 1] - v[i]) : v[i];
 }
 
-/** Solve the 3x3 normal equations of y = a x + b z + c. */
-function fitPlane(pts: [number, number, number][]): [number, number, number] {
-  const m = [[0, 0, 0], [0, 0, 0], [0, 0, 0]];
-  const r = [0, 0, 0];
-  for (const [x, y, z] of pts) {
-    const row = [x, z, 1];
-    for (let i = 0; i < 3; i++) {
-      r[i] += row[i] * y;
-      for (let k = 0; k < 3; k++) m[i][k] += row[i] * row[k];
+/** Least squares of y on the given columns plus a constant (normal equations, Gaussian elimination). */
+function fitLinear(rows: number[][], ys: number[]): number[] {
+  const n = rows[0].length + 1;
+  const m = Array.from({ length: n }, () => new Array<number>(n).fill(0));
+  const r = new Array<number>(n).fill(0);
+  rows.forEach((row, i) => {
+    const x = [...row, 1];
+    for (let p = 0; p < n; p++) {
+      r[p] += x[p] * ys[i];
+      for (let q = 0; q < n; q++) m[p][q] += x[p] * x[q];
     }
-  }
-  for (let c = 0; c < 3; c++) {              // Gaussian elimination with partial pivoting
+  });
+  for (let c = 0; c < n; c++) {              // with partial pivoting
     let piv = c;
-    for (let i = c + 1; i < 3; i++) if (Math.abs(m[i][c]) > Math.abs(m[piv][c])) piv = i;
+    for (let i = c + 1; i < n; i++) if (Math.abs(m[i][c]) > Math.abs(m[piv][c])) piv = i;
     [m[c], m[piv]] = [m[piv], m[c]];
     [r[c], r[piv]] = [r[piv], r[c]];
-    for (let i = c + 1; i < 3; i++) {
+    for (let i = c + 1; i < n; i++) {
       const f = m[i][c] / m[c][c];
-      for (let k = c; k < 3; k++) m[i][k] -= f * m[c][k];
+      for (let k = c; k < n; k++) m[i][k] -= f * m[c][k];
       r[i] -= f * r[c];
     }
   }
-  const out = [0, 0, 0];
-  for (let i = 2; i >= 0; i--) {
+  const out = new Array<number>(n).fill(0);
+  for (let i = n - 1; i >= 0; i--) {
     let s = r[i];
-    for (let k = i + 1; k < 3; k++) s -= m[i][k] * out[k];
+    for (let k = i + 1; k < n; k++) s -= m[i][k] * out[k];
     out[i] = s / m[i][i];
   }
-  return [out[0], out[1], out[2]];
+  return out;
+}
+
+/** The principal axes of ground points (x, z): the first the widest spread (closed form, as Python). */
+function axes(pts: [number, number][]): [[number, number], [number, number]] {
+  const mx = pts.reduce((s, p) => s + p[0], 0) / pts.length;
+  const mz = pts.reduce((s, p) => s + p[1], 0) / pts.length;
+  let sxx = 0; let sxz = 0; let szz = 0;
+  for (const [x, z] of pts) { sxx += (x - mx) ** 2; sxz += (x - mx) * (z - mz); szz += (z - mz) ** 2; }
+  const t = 0.5 * Math.atan2(2 * sxz, sxx - szz);
+  const u: [number, number] = [Math.cos(t), Math.sin(t)];
+  return [u, [-u[1], u[0]]];
+}
+
+function median(values: number[]): number {
+  const v = [...values].sort((a, b) => a - b);
+  const m = v.length >> 1;
+  return v.length % 2 ? v[m] : (v[m - 1] + v[m]) / 2;
 }
 
 /** (a, b, c) of the floor y = a x + b z + c of a clip [frames, J, 3] (world frame, y up). */
@@ -67,17 +86,22 @@ export function floorPlane(positions: ArrayLike<number>, frames: number, skeleto
   for (let round = 0; round < 4; round++) {
     const pts = low.filter(([x, y, z]) => Math.abs(y - (a * x + b * z + c)) <= CONTACT_BAND);
     if (pts.length < 3) break;
-    const span = (k: 0 | 2) => Math.max(...pts.map((p) => p[k])) - Math.min(...pts.map((p) => p[k]));
-    if (Math.max(span(0), span(2)) >= MIN_SPREAD) {
-      const [a2, b2, c2] = fitPlane(pts);
-      if (Math.hypot(a2, b2) <= MAX_SLOPE) {
-        [a, b, c] = [a2, b2, c2];
-        continue;
-      }
-    }
-    a = 0;
-    b = 0;
-    c = percentile(pts.map((p) => p[1]), 50);
+    // a tilt only along a ground axis the contacts spread over (a walk's direction)
+    const ground = pts.map(([x, , z]) => [x, z] as [number, number]);
+    const cx = ground.reduce((s, p) => s + p[0], 0) / ground.length;
+    const cz = ground.reduce((s, p) => s + p[1], 0) / ground.length;
+    const ax = axes(ground);
+    const along = ground.map(([x, z]) => ax.map((u) => (x - cx) * u[0] + (z - cz) * u[1]));
+    const wide = [0, 1].filter((k) => Math.max(...along.map((p) => p[k])) - Math.min(...along.map((p) => p[k])) >= MIN_SPREAD);
+    const fit = fitLinear(along.map((p) => wide.map((k) => p[k])), pts.map((p) => p[1]));
+    let sx = 0;
+    let sz = 0;
+    wide.forEach((k, i) => { sx += fit[i] * ax[k][0]; sz += fit[i] * ax[k][1]; });
+    let c0 = fit[fit.length - 1];
+    if (Math.hypot(sx, sz) > MAX_SLOPE) { sx = 0; sz = 0; c0 = median(pts.map((p) => p[1])); }
+    a = sx;
+    b = sz;
+    c = c0 - (sx * cx + sz * cz);
   }
   return [a, b, c];
 }

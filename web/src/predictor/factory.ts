@@ -9,7 +9,15 @@ import { cutOutOfBounds } from './guard';
 import { KeyposesPredictor } from './keyposes';
 import { LcpVaePredictor } from './lcp-vae';
 import { checkHistory } from './request';
-import { PredictError, type History, type Prediction, type PredictRequest, type Predictor, type PredictorContext } from './types';
+import {
+  PredictError,
+  type History,
+  type Prediction,
+  type PredictRequest,
+  type Predictor,
+  type PredictorContext,
+  type RangeWarning,
+} from './types';
 import { WatPredictor } from './wat';
 
 function methodPredictor(ctx: PredictorContext): Predictor {
@@ -44,11 +52,24 @@ class Guarded implements Predictor {
     const recent = history.positions.subarray((history.frames - n) * j * 3);
     const env = (entry.params as { envelope?: Record<string, [number, number]> }).envelope;
     const warnings = env ? checkEnvelope(toCanonical(recent, n, skeleton).canonical, n, fps, skeleton, env) : [];
-    const pred = await this.inner.predict(history, req, isCancelled);
+    let pred: Prediction;
+    try {
+      pred = await this.inner.predict(history, req, isCancelled);
+    } catch (e) {
+      // A refusal also names the envelope warnings, which may be its real cause.
+      if (e instanceof PredictError) throw new PredictError(refusalWithWarnings(e.message, warnings));
+      throw e;
+    }
     cutOutOfBounds(pred, recent, n, skeleton);
     pred.warnings = warnings;
     return pred;
   }
+}
+
+/** A refusal followed by the history's envelope warnings (twin of predictor.py refusal_with_warnings). */
+export function refusalWithWarnings(message: string, warnings: RangeWarning[]): string {
+  if (warnings.length === 0) return message;
+  return `${message}. The history is outside the training range: ${warnings.map((w) => w.message).join(' ')}`;
 }
 
 export function createPredictor(ctx: PredictorContext): Predictor {
