@@ -2,13 +2,14 @@
 // tests keep passing when the clips and models are replaced: the clip index, the manifest, the model
 // the page opens on, the history it opens on, and clips chosen by role and length.
 import { readFileSync } from 'node:fs';
-import type { ClipIndex, ClipIndexEntry, Manifest, ModelEntry } from '../../web/src/contract/types';
+import type { ClipDoc, ClipIndex, ClipIndexEntry, Manifest, ModelEntry } from '../../web/src/contract/types';
+import { movingStart } from '../../web/src/motion/moving-start';
 
 export const index: ClipIndex = JSON.parse(readFileSync(new URL('../../public/clips/index.json', import.meta.url), 'utf8'));
 export const manifest: Manifest = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8'));
 
 /** The clip the page falls back to when the index names no default (web/src/ui/app.ts DEFAULT_CLIP). */
-const FALLBACK_CLIP = 'walker_walk_forward';
+const FALLBACK_CLIP = 'deepmimic_walker_walk_forward';
 
 /** The model the page opens on: WAT (method "wat"), else the first with a K control, else the first. */
 export const stageModel: ModelEntry = manifest.models.find((m) => m.method === 'wat')
@@ -27,7 +28,10 @@ export function defaultHistory(): { clip: ClipIndexEntry; start: number } {
   const byName = (n?: string) => index.clips.find((c) => c.name === n);
   const clip = byName(index.default?.clip) ?? byName(FALLBACK_CLIP) ?? index.clips.find((c) => c.role === 'test')!;
   const n = stageModel.params.history_frames;
-  const start = index.default?.clip === clip.name ? index.default.start : (clip.test.find(([a, b]) => b - a >= n)?.[0] ?? 0);
+  if (index.default?.clip !== clip.name) return { clip, start: clip.test.find(([a, b]) => b - a >= n)?.[0] ?? 0 };
+  // the index's start moved past a standing start, as the page does (web/src/motion/moving-start.ts)
+  const doc = JSON.parse(readFileSync(new URL(`../../public/clips/${clip.file}`, import.meta.url), 'utf8')) as ClipDoc;
+  const start = movingStart(Float32Array.from(doc.positions.flat(2)), doc.positions.length, doc.positions[0].length, index.fps, index.default.start);
   return { clip, start };
 }
 

@@ -58,7 +58,7 @@ describe('WAT (Transformer) in the browser', () => {
     expect(await page.locator('.sample-item').count()).toBe(10);
     expect(await page.locator('figure.curve svg.curve-plot path').count()).toBe(10);
 
-    await stageShot(session, page, 'wat-transformer.png', 40);
+    await stageShot(session, page, 'wat-transformer.png', 40, 0.008);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 });

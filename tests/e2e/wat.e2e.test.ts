@@ -73,7 +73,7 @@ describe('WAT (RNN) in the browser', () => {
     expect(await page.locator('figure.curve figcaption').textContent()).toMatch(/Eq\. 8/);
     expect(delta).toBeGreaterThan(0);
 
-    await stageShot(session, page, 'wat-rnn.png', 40);
+    await stageShot(session, page, 'wat-rnn.png', 40, 0.008);
     // the read-out and the plot (below the fold of the page)
     await writeFile('/tmp/wat-rnn-futures.png', await session.screenshot('wat-rnn-futures.png', page.locator('[data-section="prediction"]')));
     expect(session.problems).toEqual(NO_PROBLEMS);

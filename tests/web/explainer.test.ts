@@ -111,7 +111,7 @@ describe('PCA and separation', () => {
 });
 
 describe('keyposes, rebuilt', () => {
-  const m = clip('dance_a');
+  const m = clip('deepmimic_dance_a');
 
   it('every frame a keypose rebuilds the clip exactly; fewer keyposes, more error', () => {
     const all = Array.from({ length: m.frames }, (_, i) => i);

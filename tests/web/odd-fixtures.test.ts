@@ -6,6 +6,7 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { ClipDoc } from '../../web/src/contract/types';
 import { firstBadFrame } from '../../web/src/predictor/guard';
+import { PredictError } from '../../web/src/predictor/types';
 import { loadManifest, nodePredictor } from './helpers/models';
 
 const manifest = loadManifest();
@@ -21,10 +22,20 @@ describe('committed odd histories give bounded futures and named warnings', () =
     for (const entry of manifest.models) {
       it(`${name} with ${entry.id}`, async () => {
         const ids = new Set(entry.controls.map((c) => c.id));
-        const pred = await nodePredictor(manifest, entry.id).predict({ positions, frames, joints: J }, {
-          k: ids.has('k') ? 3 : 1, seed: 0, actions: ids.has('actions') ? ['walk'] : undefined,
-          horizonFrames: ids.has('horizon') || ids.has('actions') ? 30 : undefined,
-        });
+        let pred;
+        try {
+          pred = await nodePredictor(manifest, entry.id).predict({ positions, frames, joints: J }, {
+            k: ids.has('k') ? 3 : 1, seed: 0, actions: ids.has('actions') ? ['walk'] : undefined,
+            horizonFrames: ids.has('horizon') || ids.has('actions') ? 30 : undefined,
+          });
+        } catch (err) {
+          // A named refusal (Keyposes: too few keyposes) is an answer too, and names the range it is out of.
+          expect(err).toBeInstanceOf(PredictError);
+          expect(entry.method).toBe('keyposes');
+          expect((err as Error).message).toContain('keyposes');
+          if (expected) expect((err as Error).message).toContain('outside the training range');
+          return;
+        }
         const n = entry.params.history_frames;
         const recent = positions.subarray((frames - n) * S);
         for (let i = 0; i < pred.k; i++) {

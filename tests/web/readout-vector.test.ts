@@ -40,7 +40,7 @@ describe('read-out vector (Python predictor + evaluation -> TypeScript predictor
       // read-out's arithmetic adds at most this file's float32-vs-float64 tolerance. A whole-pose
       // distance moves by at most sqrt(3J) ~ 7 times a per-coordinate difference, which the e2e
       // tolerance (30 times the measured per-coordinate gap) still covers at the gaps measured.
-      const tol = tolerance(e2e, c.model) + tolerance(vector);
+      const tol = tolerance(e2e, c.model) + tolerance(vector, c.model);
       for (const [kind, got] of [['root_relative', r.best!.rootRelative], ['world', r.best!.world]] as const) {
         const want = c[kind];
         expect(Math.abs(got.ade - want.ade), `${kind} best-of-K ADE`).toBeLessThanOrEqual(tol);

@@ -8,7 +8,7 @@ import { validate } from '../../web/src/contract/validate';
 import { MAX_SEED } from '../../web/src/rng/prng';
 import { embedSnippet, iframeSnippet, permalink } from '../../web/src/share/links';
 import {
-  decodeState, DEFAULT_MAX_ACTIONS, encodeSearch, encodeState, shortHash, STATE_KEYS, UrlStateError, VIEW_KEYS,
+  decodeState, DEFAULT_MAX_ACTIONS, encodeSearch, encodeState, shortHash, stageModel, STATE_KEYS, UrlStateError, VIEW_KEYS,
   type ControlValue, type ShareState,
 } from '../../web/src/share/url-state';
 import { olderRelease, releaseUrl } from '../../web/src/share/versions';
@@ -145,9 +145,10 @@ describe('links that do not fit this site say so', () => {
     expect(problems[0].text).toMatch(/differ/);
   });
 
-  it('an unknown model falls back to the first one, and says so', () => {
+  it('an unknown model falls back to the stage model (WAT), and says so', () => {
     const { state, problems } = decode((q) => q.set('model', 'wat-from-the-future'));
-    expect(state.model).toBe(served.models[0].id);
+    expect(state.model).toBe(stageModel(served).id);
+    expect(served.models.find((m) => m.id === state.model)?.method).toBe('wat');
     expect(problems.map((p) => p.text).join(' ')).toMatch(/wat-from-the-future.*does not serve/);
   });
 

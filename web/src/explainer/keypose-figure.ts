@@ -14,7 +14,10 @@ const AXES = ['x (left–right)', 'y (up)', 'z (forward)'];
 export async function mountKeyposeFigure(host: HTMLElement, data: ExplainerData): Promise<void> {
   const kp = data.model('keyposes');
   const served = (kp?.params.keyposes as { threshold?: number } | undefined)?.threshold;
-  const state = { clip: 'dance_a', joint: 'right_wrist', axis: 1, threshold: served ?? 0.3 };
+  // A held-out dance (a person no model saw), else any dance, else the first clip.
+  const dances = data.index.clips.filter((c) => c.action.startsWith('dance'));
+  const first = dances.find((c) => c.role === 'test') ?? dances[0] ?? data.index.clips[0];
+  const state = { clip: first?.name ?? '', joint: 'right_wrist', axis: 1, threshold: served ?? 0.3 };
   const f = figureShell(host, 'fig-keyposes', '3. Keyposes: the poses a straight line cannot skip',
     ['Keyposes starts from the first and last frame and adds, in each segment, the frame that linear interpolation between its ends ',
       'misses most, until the segment\'s mean error (the length of the whole-pose difference) is below a threshold. A high threshold keeps a few poses; ',

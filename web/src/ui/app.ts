@@ -5,6 +5,7 @@ import type { Manifest } from '../contract/types';
 import { sharedClient, sharedManifest, newViewId } from '../embed/shared';
 import { EMBED_SCRIPT } from '../embed/site';
 import type { Motion } from '../motion/clip';
+import { movingStart } from '../motion/moving-start';
 import { MAX_SEED } from '../rng/prng';
 import { embedSnippet, iframeSnippet, permalink } from '../share/links';
 import { mountSharePanel, type Shareable } from '../share/share-panel';
@@ -372,7 +373,8 @@ export function startApp(parts: AppParts, o: AppOptions): App {
         banner.show(`The history cannot start at frame ${asked.start} of ${motion.name}; it starts at frame ${predictor.historyStart()}.`, 'warning', 'link-start');
       }
     } else if (motion && clips.defaultStart(motion.name) !== undefined) {
-      predictor.setStart(clips.defaultStart(motion.name)!); // the index's default history
+      // the index's default history, moved past a standing start (motion/moving-start.ts)
+      predictor.setStart(movingStart(motion.positions, motion.frames, motion.joints, motion.fps, clips.defaultStart(motion.name)!));
     }
     // The first view predicts the action the history shows, when the model knows it.
     const entry = predictor.inputsNow()?.model;
