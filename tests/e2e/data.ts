@@ -28,11 +28,23 @@ export function defaultHistory(): { clip: ClipIndexEntry; start: number } {
   const byName = (n?: string) => index.clips.find((c) => c.name === n);
   const clip = byName(index.default?.clip) ?? byName(FALLBACK_CLIP) ?? index.clips.find((c) => c.role === 'test')!;
   const n = stageModel.params.history_frames;
-  if (index.default?.clip !== clip.name) return { clip, start: clip.test.find(([a, b]) => b - a >= n)?.[0] ?? 0 };
+  if (index.default?.clip !== clip.name) return { clip, start: openingStart(clip, n) };
   // the index's start moved past a standing start, as the page does (web/src/motion/moving-start.ts)
-  const doc = JSON.parse(readFileSync(new URL(`../../public/clips/${clip.file}`, import.meta.url), 'utf8')) as ClipDoc;
+  const doc = readClip(clip);
   const start = movingStart(Float32Array.from(doc.positions.flat(2)), doc.positions.length, doc.positions[0].length, index.fps, index.default.start);
   return { clip, start };
+}
+
+function readClip(clip: ClipIndexEntry): ClipDoc {
+  return JSON.parse(readFileSync(new URL(`../../public/clips/${clip.file}`, import.meta.url), 'utf8')) as ClipDoc;
+}
+
+/** Where the page opens a picked clip for an n-frame history (web/src/ui/history-picker.ts defaultStart). */
+export function openingStart(clip: ClipIndexEntry, n: number): number {
+  const [a, b] = clip.test.find(([s, e]) => e - s >= n) ?? [0, clip.frames];
+  const doc = readClip(clip);
+  const moving = movingStart(Float32Array.from(doc.positions.flat(2)), doc.positions.length, doc.positions[0].length, index.fps, a);
+  return moving + n <= b ? moving : a;
 }
 
 /** Clips with a test range of at least `frames` frames, longest first (ties by name). */

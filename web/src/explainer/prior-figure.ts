@@ -132,7 +132,7 @@ async function condition(data: ExplainerData, entry: ModelEntry, clips: string[]
   const batch = new Float32Array(clips.length * n * j * 3);
   for (const [i, name] of clips.entries()) {
     const m = await data.clip(name);
-    const start = m.role === 'test' ? 0 : defaultStart(m, n);
+    const start = defaultStart(m, n);
     batch.set(toCanonical(clipWindow(m, start, n), n, skeleton).canonical, i * n * j * 3);
   }
   const out = await data.graphs().run(entry.id, 'condition', { history: { data: batch, dims: [clips.length, n, j, 3] } });

@@ -4,7 +4,6 @@
 // worker, fed by KeyposesPredictor.observe); the sequences are K whole predictions by
 // KeyposesPredictor itself at the same T, its graphs in the same worker.
 import { window as clipWindow } from '../motion/clip';
-import { movingStart } from '../motion/moving-start';
 import { KeyposesPredictor } from '../predictor/keyposes';
 import type { History, Tensor } from '../predictor/types';
 import { softmax } from '../sampling/temperature';
@@ -116,8 +115,8 @@ export async function mountTemperatureFigure(host: HTMLElement, data: ExplainerD
     logits = null;
     try {
       const m = await data.clip(clip.input.value);
-      // past a standing start, as the stage opens (motion/moving-start.ts): Keyposes needs 3 keyposes
-      const start = movingStart(m.positions, m.frames, m.joints, m.fps, m.role === 'test' ? 0 : defaultStart(m, n));
+      // past a standing start, as the stage opens a clip: Keyposes needs 3 keyposes
+      const start = defaultStart(m, n);
       history = { positions: clipWindow(m, start, n), frames: n, joints: m.joints };
       const { centres } = await predictor.loadCentres();
       const obs = predictor.observe(history, centres);

@@ -1,5 +1,6 @@
 // Which window of the current clip is the history: its start frame, with the split it falls in.
 import type { Motion } from '../motion/clip';
+import { movingStart } from '../motion/moving-start';
 import { el } from './dom';
 
 export interface HistoryPicker {
@@ -10,10 +11,12 @@ export interface HistoryPicker {
   setStart(f: number): void;
 }
 
-/** The default start: the beginning of the test part when there is one, else frame 0. */
+/** The default start: the beginning of the test part when there is one, else frame 0, moved past a
+ *  standing start when the history still fits in that part (motion/moving-start.ts). */
 export function defaultStart(m: Motion, historyFrames: number): number {
-  const test = m.test.find(([a, b]) => b - a >= historyFrames);
-  return test ? test[0] : 0;
+  const [a, b] = m.test.find(([s, e]) => e - s >= historyFrames) ?? [0, m.frames];
+  const moving = movingStart(m.positions, m.frames, m.joints, m.fps, a);
+  return moving + historyFrames <= b ? moving : a;
 }
 
 /** Which part of the split a window [a, b) lies in. */
