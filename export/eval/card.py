@@ -11,7 +11,7 @@ import math
 import re
 from pathlib import Path
 
-from ..paths import DOCS_DIR
+from ..paths import CONTRACT_DIR, DOCS_DIR
 
 MODEL_CARD_MD = DOCS_DIR / "MODEL_CARD.md"
 
@@ -157,33 +157,9 @@ def model_card(doc: dict) -> str:
     return "\n".join(lines)
 
 
-CITATIONS = """
-@inproceedings{mao2022weakly,
-  title     = {Weakly-supervised Action Transition Learning for Stochastic Human Motion Prediction},
-  author    = {Mao, Wei and Liu, Miaomiao and Salzmann, Mathieu},
-  booktitle = {Proceedings of the IEEE/CVF Conference on Computer Vision and Pattern Recognition (CVPR)},
-  year      = {2022}
-}
-
-@inproceedings{aliakbarian2021contextually,
-  title     = {Contextually Plausible and Diverse 3D Human Motion Prediction},
-  author    = {Aliakbarian, Sadegh and Saleh, Fatemeh and Petersson, Lars and Gould, Stephen and Salzmann, Mathieu},
-  booktitle = {Proceedings of the IEEE/CVF International Conference on Computer Vision (ICCV)},
-  year      = {2021}
-}
-
-@inproceedings{kiciroglu2022keyposes,
-  title     = {Long Term Motion Prediction Using Keyposes},
-  author    = {Kiciroglu, Sena and Wang, Wei and Salzmann, Mathieu and Fua, Pascal},
-  booktitle = {International Conference on 3D Vision (3DV)},
-  year      = {2022}
-}
-
-@misc{cmu_mocap,
-  title  = {CMU Graphics Lab Motion Capture Database},
-  note   = {mocap.cs.cmu.edu; the database was created with funding from NSF EIA-0196217}
-}
-"""
+# The papers and the data, one copy shared with the model-card page (web/src/model-card/card.ts).
+CITATIONS = "".join(line for line in (CONTRACT_DIR / "papers.bib").read_text().splitlines(keepends=True)
+                    if not line.startswith("%"))
 
 
 def write_card(doc: dict, path: Path = MODEL_CARD_MD) -> None:

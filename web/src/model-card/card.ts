@@ -2,6 +2,7 @@
 // do, read from the measured numbers in results.json (never typed in), so the card follows each
 // evaluation run. Pure functions, tested in Node (tests/web/explainer.test.ts).
 import type { ClipIndex, Manifest } from '../contract/types';
+import PAPERS_BIB from '../../../contract/papers.bib?raw';
 import type { Results, Row, Stat, Table } from '../results/data';
 import { fmt } from '../results/format';
 
@@ -327,41 +328,8 @@ export function cardColumns(t: Table): string[] {
   return t.horizon_frames <= 30 ? cols.filter((c) => c !== 'mpjpe_h_best') : cols.filter((c) => c !== 'mpjpe_1s_best');
 }
 
-export const PAPERS_BIBTEX = `@inproceedings{mao2022weakly,
-  title     = {Weakly-supervised Action Transition Learning for Stochastic Human Motion Prediction},
-  author    = {Mao, Wei and Liu, Miaomiao and Salzmann, Mathieu},
-  booktitle = {Proceedings of the IEEE/CVF Conference on Computer Vision and Pattern Recognition (CVPR)},
-  year      = {2022}
-}
-
-@inproceedings{aliakbarian2021contextually,
-  title     = {Contextually Plausible and Diverse 3D Human Motion Prediction},
-  author    = {Aliakbarian, Sadegh and Saleh, Fatemeh and Petersson, Lars and Gould, Stephen and Salzmann, Mathieu},
-  booktitle = {Proceedings of the IEEE/CVF International Conference on Computer Vision (ICCV)},
-  year      = {2021}
-}
-
-@inproceedings{kiciroglu2022keyposes,
-  title     = {Long Term Motion Prediction Using Keyposes},
-  author    = {Kiciroglu, Sena and Wang, Wei and Salzmann, Mathieu and Fua, Pascal},
-  booktitle = {International Conference on 3D Vision (3DV)},
-  year      = {2022}
-}
-
-@article{peng2018deepmimic,
-  title   = {DeepMimic: Example-Guided Deep Reinforcement Learning of Physics-Based Character Skills},
-  author  = {Peng, Xue Bin and Abbeel, Pieter and Levine, Sergey and van de Panne, Michiel},
-  journal = {ACM Transactions on Graphics (Proc. SIGGRAPH)},
-  volume  = {37},
-  number  = {4},
-  year    = {2018}
-}
-
-@misc{cmumocap,
-  title        = {{CMU} Graphics Lab Motion Capture Database},
-  howpublished = {\\url{http://mocap.cs.cmu.edu}},
-  note         = {The database was created with funding from NSF EIA-0196217}
-}`;
+/** The papers and the data, shared with the generated docs/MODEL_CARD.md (export/eval/card.py). */
+export const PAPERS_BIBTEX = PAPERS_BIB.replace(/^%.*\n/gm, '').trim();
 
 /** This project's BibTeX; the version comes from the site (package.json at build time). */
 export function projectBibtex(version: string): string {
