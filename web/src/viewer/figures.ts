@@ -1,4 +1,8 @@
 // Many skeletons in two draw calls: one InstancedMesh of bone cylinders, one of joint spheres.
+// A crowd (more than CROWD figures, e.g. K = 50) is drawn coarser: software WebGL (SwiftShader, what
+// a machine without a GPU uses) spends its frame on vertices, and 50 figures of 18 fine spheres
+// took 200-280 ms a frame here (make bench); at that count each figure is small on screen, so bones
+// with fewer sides and a sphere for the head only read the same.
 import {
   Color, CylinderGeometry, Group, InstancedMesh, Matrix4, MeshLambertMaterial, Quaternion, SRGBColorSpace,
   SphereGeometry, Vector3,
@@ -19,12 +23,24 @@ const JOINT_RADIUS = 0.034;
 // A head about 0.16 m wide on this 1.46 m figure; 0.1 read as oversized next to the thin bones.
 const HEAD_RADIUS = 0.08;
 const SIDES: Side[] = ['left', 'right', 'mid'];
+/** Above this many figures the crowd detail is drawn. */
+export const CROWD = 20;
+
+/** Segments of a bone's cylinder and of a joint's sphere, and whether every joint gets a sphere. */
+export interface Detail { boneSides: number; sphere: [number, number]; everyJoint: boolean }
+export const FINE: Detail = { boneSides: 10, sphere: [14, 10], everyJoint: true };
+export const COARSE: Detail = { boneSides: 6, sphere: [10, 7], everyJoint: false };
+
+export function detailFor(figures: number): Detail {
+  return figures > CROWD ? COARSE : FINE;
+}
 const UP = new Vector3(0, 1, 0);
 
 export class SkeletonFigures {
   readonly group = new Group();
-  private readonly boneGeometry = new CylinderGeometry(1, 1, 1, 10, 1, true);
-  private readonly jointGeometry = new SphereGeometry(1, 14, 10);
+  private detail: Detail = FINE;
+  private boneGeometry = new CylinderGeometry(1, 1, 1, FINE.boneSides, 1, true);
+  private jointGeometry = new SphereGeometry(1, ...FINE.sphere);
   private readonly material = new MeshLambertMaterial({ color: 0xffffff });
   private bones: InstancedMesh | null = null;
   private joints: InstancedMesh | null = null;
@@ -59,8 +75,14 @@ export class SkeletonFigures {
     this.capacity = 0; // joint count may differ: rebuild on next draw
   }
 
+  /** The detail the last draw used. */
+  get drawnDetail(): Detail {
+    return this.detail;
+  }
+
   draw(figures: readonly FigureDraw[]): void {
-    this.ensureCapacity(figures.length);
+    this.ensureCapacity(figures.length, detailFor(figures.length));
+    const sphereJoints = this.sphereJoints();
     const bones = this.bones!;
     const joints = this.joints!;
     let bi = 0;
@@ -86,7 +108,7 @@ export class SkeletonFigures {
         bones.setColorAt(bi++, this.colours[this.boneSides[k]]);
       }
       this.q.identity();
-      for (let j = 0; j < this.jointSides.length; j++) {
+      for (const j of sphereJoints) {
         this.a.set(p[j * 3] + f.x, p[j * 3 + 1], p[j * 3 + 2] + f.z);
         const r = this.jointRadii[j] * scale;
         this.s.set(r, r, r);
@@ -106,7 +128,8 @@ export class SkeletonFigures {
    *  colours, as '#rrggbb' sRGB: what the screen shows, for the legend and the tests. */
   identityHex(i: number): string | null {
     const colours = this.joints?.instanceColor;
-    const index = i * this.jointSides.length + this.identityJoint;
+    const per = this.sphereJoints();
+    const index = i * per.length + per.indexOf(this.identityJoint);
     if (!colours || !this.joints || index >= this.joints.count) return null;
     return this.c.fromArray(colours.array, index * 3).getHexString(SRGBColorSpace).replace(/^/, '#');
   }
@@ -119,7 +142,20 @@ export class SkeletonFigures {
     this.material.dispose();
   }
 
-  private ensureCapacity(figures: number): void {
+  /** The joints drawn as spheres at the current detail: all, or the head only. */
+  private sphereJoints(): number[] {
+    return this.detail.everyJoint ? this.jointSides.map((_, j) => j) : [this.identityJoint];
+  }
+
+  private ensureCapacity(figures: number, detail: Detail): void {
+    if (detail !== this.detail) {
+      this.detail = detail;
+      this.boneGeometry.dispose();
+      this.jointGeometry.dispose();
+      this.boneGeometry = new CylinderGeometry(1, 1, 1, detail.boneSides, 1, true);
+      this.jointGeometry = new SphereGeometry(1, ...detail.sphere);
+      this.capacity = 0;
+    }
     if (figures <= this.capacity && this.bones) return;
     // Grow geometrically so adding samples one by one does not rebuild every time.
     const capacity = Math.max(8, figures, this.capacity * 2);
