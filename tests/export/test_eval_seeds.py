@@ -19,15 +19,22 @@ def clips(deepmimic):
     return deepmimic
 
 
-def test_an_extra_seed_is_trained_exported_and_loaded_once(clips, tmp_path):
+def test_an_extra_seed_is_trained_exported_and_loaded_once(clips, tmp_path, monkeypatch):
     cfg = override(load_config("regression.json"), **{"id": "tiny-regression", "train.steps": 2,
                                                         "train.batch_size": 8, "model.hidden": 8, "train.stride": 8})
     path = tmp_path / "tiny.json"
     path.write_text(json.dumps(cfg))
     row = Row("tiny", "Tiny regression", config=str(path))
-    said = []
+    said, checked = [], []
+    # the extra seeds' graphs go through the rounding-derived parity check (export/onnx/parity.py)
+    from export.onnx import parity
+    real = parity.check_parity
+    def spy(graph, blob, *args, **kwargs):
+        checked.append(graph.outputs[0].name)
+        return real(graph, blob, *args, **kwargs)
+    monkeypatch.setattr("export.eval.seeds.check_parity", spy)
     notes = train_seeds(list(clips.values()), [1], rows=[row], seeds_root=tmp_path / "seeds", progress=said.append)
-    assert notes == [] and len(said) == 1
+    assert notes == [] and len(said) == 1 and checked
     manifest = json.loads((tmp_path / "seeds" / "tiny-regression" / "seed1" / "manifest.json").read_text())
     assert [m["id"] for m in manifest["models"]] == ["tiny-regression"]
     assert train_seeds(list(clips.values()), [1], rows=[row], seeds_root=tmp_path / "seeds", progress=said.append) == []

@@ -13,6 +13,7 @@ from export.manifest import manifest_document, write_manifest
 from export.methods.wat import WatMethod, stop_lengths
 from export.models.wat import WatRNN, kl_divergence
 from export.onnx.export import check_parity
+from export.onnx.parity import check_parity as rounding_parity
 from export.ops.dct_smoothness import smoothness, smoothness_loss
 from export.ops.transitions import build_bank, continuations, loop_period, transition_frames, transition_rate
 from export.ops.variance_stop import first_stop, variance_curve
@@ -183,21 +184,21 @@ def test_training_moves_weights_and_reports_its_losses(subset):
 
 
 def test_parity_limit_comes_from_the_float64_gap_and_still_catches_a_wrong_weight(tiny):
-    """A long rollout may differ from torch by more than 1e-4 through float32 rounding alone: the limit is
-    then derived from torch's own float32-vs-float64 gap (issue 16's rule), never so loose that a changed
-    weight passes."""
+    """A long rollout may differ from torch by more than 1e-4 through float32 rounding alone: `make results`
+    then derives the limit from torch's own float32-vs-float64 gap (issue 16's rule, export/onnx/parity.py),
+    never so loose that a changed weight passes."""
     method, model, entry, out = tiny
     graph = method.graphs(model)["decoder"]
     blob = (out / entry["graphs"]["decoder"]["file"]).read_bytes()
     err = check_parity(graph, blob)
     assert 0 < err < 1e-4
-    assert check_parity(graph, blob, rtol=1e-12) == err   # forced onto the derived limit, it still passes
+    assert rounding_parity(graph, blob, rtol=1e-12) == err   # forced onto the derived limit, it still passes
     weight = max(model.parameters(), key=lambda p: p.numel())
     with torch.no_grad():
         weight.mul_(1.001)
     try:
         with pytest.raises(AssertionError, match="differs from torch"):
-            check_parity(graph, blob, rtol=1e-12)
+            rounding_parity(graph, blob, rtol=1e-12)
     finally:
         with torch.no_grad():
             weight.div_(1.001)
