@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from ..config import load_config
+from ..config import load_config, model_hash, override
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.sources import FPS
@@ -196,6 +196,11 @@ def load_row_models(row: Row, seeds: list[int], models_dir: Path, seeds_root: Pa
         if entry is None:
             missing.append(seed)
             continue
+        # A model trained by other code or config is still evaluated, but said so: `make results` (or
+        # `make models` for a served one) retrains it.
+        if entry["hash"] != model_hash(override(cfg, **{"train.seed": seed}), manifest["data_hash"]) and \
+                entry["hash"] != model_hash(cfg, manifest["data_hash"]):
+            broken.append(f"training seed {seed} is stale: its hash is not what this code and config give")
         try:
             predictor = with_rule(predictor_for(entry, manifest, directory), row.extract)
         except Exception as e:   # a stale export (other graph signature, missing file) must not stop the rest

@@ -45,3 +45,17 @@ def test_an_extra_seed_is_trained_exported_and_loaded_once(clips, tmp_path, monk
     history = clips["walker_walk_forward"].positions[:10]
     pred = runs[0].predictor.predict(history, Request(k=1, seed=0, horizon_frames=30))
     assert pred.futures.shape == (1, 30, 18, 3) and np.isfinite(pred.futures).all()
+
+
+def test_a_model_from_other_code_or_config_is_evaluated_but_called_stale(clips, tmp_path):
+    cfg = override(load_config("regression.json"), **{"id": "tiny-regression", "train.steps": 2,
+                                                        "train.batch_size": 8, "model.hidden": 8, "train.stride": 8})
+    path = tmp_path / "tiny.json"
+    path.write_text(json.dumps(cfg))
+    row = Row("tiny", "Tiny regression", config=str(path))
+    train_seeds(list(clips.values()), [1], rows=[row], seeds_root=tmp_path / "seeds", progress=lambda s: None)
+    runs, notes = load_row_models(row, [1], MODELS_DIR, tmp_path / "seeds")
+    assert len(runs) == 1 and not any("stale" in n for n in notes)
+    path.write_text(json.dumps(override(cfg, **{"loss.floor": 1.0})))   # the config changed since
+    runs, notes = load_row_models(row, [1], MODELS_DIR, tmp_path / "seeds")
+    assert len(runs) == 1 and any("training seed 1 is stale" in n for n in notes)
