@@ -7,7 +7,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { CSS2DRenderer } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
-import { requireWebGL2, WebGLUnavailableError } from './webgl';
+import { requireWebGL2, softwareWebGL, WebGLUnavailableError } from './webgl';
 
 interface Theme { background: Color; gridCentre: Color; grid: Color }
 
@@ -28,6 +28,8 @@ export class Stage {
   readonly renderer: WebGLRenderer;
   readonly labels: CSS2DRenderer;
   readonly controls: OrbitControls;
+  /** Drawn by the CPU: antialiasing is off (see the constructor). */
+  readonly software: boolean;
   private grid: GridHelper | null = null;
   private gridSize = 0;
   private gridCentre = new Vector3();
@@ -43,12 +45,16 @@ export class Stage {
   /** Throws WebGLUnavailableError when no usable WebGL 2 context can be made. */
   constructor(private readonly container: HTMLElement, private readonly onContextLost?: (lost: boolean) => void) {
     requireWebGL2();
+    // Multisampling on a CPU renderer doubles every frame's cost: the 50 figures of K = 50 took 21 ms
+    // a draw with it and 8-10 ms without (make bench probe), so software WebGL draws without it.
+    this.software = softwareWebGL();
     try {
-      this.renderer = new WebGLRenderer({ antialias: true, powerPreference: 'high-performance' });
+      this.renderer = new WebGLRenderer({ antialias: !this.software, powerPreference: 'high-performance' });
     } catch (err) {
       throw new WebGLUnavailableError(`The 3D viewer could not start WebGL: ${(err as Error).message}`);
     }
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    container.dataset.renderer = this.software ? 'software' : 'gpu'; // for make bench's notes
     const canvas = this.renderer.domElement;
     canvas.classList.add('stage-canvas');
     canvas.setAttribute('role', 'img');

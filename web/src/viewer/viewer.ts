@@ -2,15 +2,14 @@
 // over the floor with their root paths drawn faintly; each figure (each cell, side by side) carries a
 // label in its identity colour; the camera frames every figure after each change of tracks or layout
 // and follows them as they travel.
-import {
-  Box3, BufferGeometry, Float32BufferAttribute, Group, Line, LineBasicMaterial, SRGBColorSpace, Vector3,
-} from 'three';
+import { Box3, Group, Vector3 } from 'three';
 import { CSS2DObject } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
 import type { Skeleton } from '../contract/types';
 import { facingAngle } from '../motion/facing';
 import { SkeletonFigures, type FigureDraw } from './figures';
 import { layoutTracks, ROW_SPACING, type Layout, type LayoutMode } from './layout';
 import { identityColour, identityCss } from './palette';
+import { RootPaths } from './paths';
 import { Stage, type FramePlan } from './stage';
 import { poseInto, timelineLength, trackPose, type Track } from './tracks';
 
@@ -84,7 +83,7 @@ interface LabelSlot {
 export class Viewer implements SkeletonView {
   private readonly stage: Stage;
   private readonly figuresMesh = new SkeletonFigures();
-  private readonly paths = new Group();
+  private readonly paths = new RootPaths(PATH_HEIGHT);
   private readonly labelGroup = new Group();
   private tracks: readonly Track[] = [];
   private skeleton: Skeleton | null = null;
@@ -98,14 +97,17 @@ export class Viewer implements SkeletonView {
   /** Placement index of each figure in the last draw, in draw order. */
   private drawn: number[] = [];
   private labels: LabelSlot[] = [];
-  private pathLines: { line: Line; sample?: number; role: Track['role'] }[] = [];
+  /** Per root path (placement order): whose it is, for its opacity under a selection. */
+  private pathOwners: { sample?: number; role: Track['role'] }[] = [];
   private pick: ((sample: number | null) => void) | null = null;
   private headJoint = 0;
+  /** Some track is not a history: an ended history gives way to it. */
+  private followed = false;
 
   /** Throws WebGLUnavailableError when WebGL 2 is missing. */
   constructor(container: HTMLElement, onContextLost?: (lost: boolean) => void) {
     this.stage = new Stage(container, onContextLost);
-    this.stage.scene.add(this.paths, this.figuresMesh.group, this.labelGroup);
+    this.stage.scene.add(this.paths.object, this.figuresMesh.group, this.labelGroup);
     this.listenForPicks();
   }
 
@@ -124,6 +126,7 @@ export class Viewer implements SkeletonView {
       this.headJoint = Math.max(0, skeleton.joints.indexOf('head'));
     }
     this.frameBoxes = tracks.map(poseBoxes);
+    this.followed = tracks.some((tr) => tr.role !== 'history');
     if (this.selected !== null && !tracks.some((tr) => tr.sample === this.selected)) this.selected = null;
     this.arrange(!options.keepView);
   }
@@ -131,6 +134,7 @@ export class Viewer implements SkeletonView {
   clear(): void {
     this.tracks = [];
     this.frameBoxes = [];
+    this.followed = false;
     this.arrange(false);
   }
 
@@ -157,6 +161,7 @@ export class Viewer implements SkeletonView {
 
   dispose(): void {
     this.clearDecorations();
+    this.paths.dispose();
     this.figuresMesh.dispose();
     this.stage.dispose();
   }
@@ -193,7 +198,7 @@ export class Viewer implements SkeletonView {
     const state = trackPose(track, t).state;
     if (state === 'pending') return false;
     // A history gives way to what follows it (its cell's own track, or the futures overlaid) once it ends.
-    if (track.role === 'history' && state === 'ended' && this.tracks.some((tr) => tr.role !== 'history')) return false;
+    if (track.role === 'history' && state === 'ended' && this.followed) return false;
     return true;
   }
 
@@ -260,16 +265,22 @@ export class Viewer implements SkeletonView {
     const length = Math.max(1, timelineLength(this.tracks));
     const labelRoom = Math.max(0, ...this.labels.map((l) => l.lift)) + 0.12;
     const boxes: Box3[] = [];
+    const placements = this.arrangement.placements;
     for (let f = 0; f < length; f++) {
+      // plain numbers, not a Box3 per figure and frame: K = 50 runs this for 52 figures x 150 frames
+      let x0 = Infinity; let y0 = Infinity; let z0 = Infinity; let x1 = -Infinity; let y1 = -Infinity; let z1 = -Infinity;
+      for (let pi = 0; pi < placements.length; pi++) {
+        if (!this.visible(pi, f)) continue;
+        const p = placements[pi];
+        const b = this.frameBoxes[p.track][trackPose(this.tracks[p.track], f).a];
+        x0 = Math.min(x0, b.min.x + p.x); y0 = Math.min(y0, b.min.y); z0 = Math.min(z0, b.min.z + p.z);
+        x1 = Math.max(x1, b.max.x + p.x); y1 = Math.max(y1, b.max.y); z1 = Math.max(z1, b.max.z + p.z);
+      }
       const box = new Box3();
-      this.arrangement.placements.forEach((p, pi) => {
-        if (!this.visible(pi, f)) return;
-        const pose = trackPose(this.tracks[p.track], f);
-        box.union(this.frameBoxes[p.track][pose.a].clone().translate(new Vector3(p.x, 0, p.z)));
-      });
-      if (!box.isEmpty()) {
-        box.expandByPoint(new Vector3(box.min.x, 0, box.min.z)); // keep the floor in view
-        box.max.y += labelRoom; // and the labels over the heads
+      if (x0 <= x1) {
+        // keep the floor in view, and the labels over the heads
+        box.min.set(x0, Math.min(y0, 0), z0);
+        box.max.set(x1, Math.max(y1, 0) + labelRoom, z1);
       }
       boxes.push(box);
     }
@@ -288,12 +299,8 @@ export class Viewer implements SkeletonView {
   }
 
   private clearDecorations(): void {
-    for (const { line } of this.pathLines) {
-      line.geometry.dispose();
-      (line.material as LineBasicMaterial).dispose();
-    }
-    this.paths.clear();
-    this.pathLines = [];
+    this.paths.set([]);
+    this.pathOwners = [];
     for (const l of this.labels) l.element.remove();
     this.labelGroup.clear();
     this.labels = [];
@@ -302,25 +309,17 @@ export class Viewer implements SkeletonView {
   /** Root paths (one per figure placed, history copies included) and labels (one per figure, or per cell). */
   private decorate(): void {
     this.clearDecorations();
-    this.arrangement.placements.forEach((p) => {
+    this.paths.set(this.arrangement.placements.map((p) => {
       const track = this.tracks[p.track];
       const points = new Float32Array(track.frames * 3);
       for (let f = 0; f < track.frames; f++) {
         const at = f * track.joints * 3;
         points[f * 3] = track.positions[at] + p.x;
-        points[f * 3 + 1] = PATH_HEIGHT;
         points[f * 3 + 2] = track.positions[at + 2] + p.z;
       }
-      const geometry = new BufferGeometry();
-      geometry.setAttribute('position', new Float32BufferAttribute(points, 3));
-      const [r, g, b] = identityColour(track.role, track.sample ?? 0);
-      const material = new LineBasicMaterial({ transparent: true, opacity: 0.5, depthWrite: false });
-      material.color.setRGB(r, g, b, SRGBColorSpace);
-      const line = new Line(geometry, material);
-      line.frustumCulled = false;
-      this.paths.add(line);
-      this.pathLines.push({ line, sample: track.sample, role: track.role });
-    });
+      this.pathOwners.push({ sample: track.sample, role: track.role });
+      return { points, colour: identityColour(track.role, track.sample ?? 0) };
+    }));
     // Side by side: one label per cell, over whichever figure the cell shows (its history copy first,
     // then its own track). Overlaid: one label per track.
     const groups = new Map<number, number[]>();
@@ -384,10 +383,10 @@ export class Viewer implements SkeletonView {
       const j = this.headJoint * 3;
       l.object.position.set(pose[j] + p.x, pose[j + 1] + l.lift, pose[j + 2] + p.z);
     }
-    for (const { line, sample, role } of this.pathLines) {
-      const m = line.material as LineBasicMaterial;
-      m.opacity = this.selected === null || role !== 'prediction' ? 0.5 : sample === this.selected ? 0.9 : 0.15;
-    }
+    this.paths.setOpacity((i) => {
+      const { sample, role } = this.pathOwners[i];
+      return this.selected === null || role !== 'prediction' ? 0.5 : sample === this.selected ? 0.9 : 0.15;
+    });
     this.stage.invalidate();
   }
 

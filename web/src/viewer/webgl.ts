@@ -20,6 +20,26 @@ export function webglSupport(): 'webgl2' | 'webgl' | null {
   }
 }
 
+const SOFTWARE = /swiftshader|llvmpipe|softpipe|software/i;
+
+/**
+ * Whether WebGL 2 here is drawn by the CPU (SwiftShader, llvmpipe: a machine without a usable GPU).
+ * The browser says so by refusing a context that asks to fail on a major performance caveat; the
+ * renderer's name is the fallback where that flag is not honoured.
+ */
+export function softwareWebGL(): boolean {
+  try {
+    const fast = document.createElement('canvas').getContext('webgl2', { failIfMajorPerformanceCaveat: true });
+    if (!fast) return true;
+    const info = fast.getExtension('WEBGL_debug_renderer_info');
+    const name = String(info ? fast.getParameter(info.UNMASKED_RENDERER_WEBGL) : fast.getParameter(fast.RENDERER));
+    fast.getExtension('WEBGL_lose_context')?.loseContext();
+    return SOFTWARE.test(name);
+  } catch {
+    return false;
+  }
+}
+
 export function requireWebGL2(): void {
   const support = webglSupport();
   if (support === 'webgl2') return;
