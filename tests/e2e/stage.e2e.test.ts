@@ -131,6 +131,17 @@ describe('the first view (1440 x 900)', () => {
     expect(r!.truthFrames).toBeGreaterThanOrEqual(r!.frames);
   });
 
+  it('the read-out the worker computed equals the one the page computes for the same prediction', async () => {
+    const [fromWorker, onPage] = await page.evaluate(() => {
+      const pc = window.motionFutures!.predictor;
+      const worker = pc.last!.readout;
+      pc.present(pc.last!.prediction, pc.last!.ms); // a replay: the page computes the read-out itself
+      return [worker, pc.last!.readout];
+    });
+    expect(fromWorker?.samples).toHaveLength(FIRST_K);
+    expect(onPage).toEqual(fromWorker);
+  });
+
   it(`every pair of futures is at least ${MIN_PAIR_M * 100} cm apart at their last common frame`, async () => {
     const d = await pairDistances(page);
     expect(d).toHaveLength((FIRST_K * (FIRST_K - 1)) / 2);

@@ -1,7 +1,8 @@
 // The page's handle on the predictor worker. The page never imports onnxruntime: only the
 // worker does (tests/web/worker-structure.test.ts checks it).
 import type { Manifest } from '../contract/types';
-import type { FromWorker, GraphTiming, ToWorker } from './protocol';
+import type { StageReadout } from '../ui/readout';
+import type { FromWorker, GraphTiming, ReadoutInput, ToWorker } from './protocol';
 import { PredictError, Superseded, type History, type Prediction, type PredictRequest } from './types';
 
 export class ModelLoadError extends Error {
@@ -11,8 +12,9 @@ export class ModelLoadError extends Error {
   }
 }
 
-/** What the worker measured for one prediction (bench/ and the memory test read it). */
-export interface Measured { ms: number; timings?: GraphTiming[]; wasmBytes?: number | null }
+/** What the worker measured for one prediction (bench/ and the memory test read it), and the read-out
+ *  when it was asked for. */
+export interface Measured { ms: number; timings?: GraphTiming[]; wasmBytes?: number | null; readout?: StageReadout; readoutError?: string }
 
 interface Pending {
   resolve: (v: Measured & { prediction?: Prediction }) => void;
@@ -60,7 +62,9 @@ export class PredictorClient {
     if (!p) return;
     if (msg.type === 'progress') { p.onProgress?.(msg.loaded, msg.total); return; }
     this.pending.delete(msg.id);
-    if (msg.type === 'result') p.resolve({ prediction: msg.prediction, ms: msg.ms, timings: msg.timings, wasmBytes: msg.wasmBytes });
+    if (msg.type === 'result') {
+      p.resolve({ prediction: msg.prediction, ms: msg.ms, timings: msg.timings, wasmBytes: msg.wasmBytes, readout: msg.readout, readoutError: msg.readoutError });
+    }
     else if (msg.type === 'loaded') p.resolve({ ms: msg.ms });
     else if (msg.kind === 'superseded') p.reject(new Superseded());
     else if (msg.kind === 'predict') p.reject(new PredictError(msg.message));
@@ -79,10 +83,11 @@ export class PredictorClient {
     return (await this.call({ type: 'load', id: this.nextId++, model }, onProgress)).ms;
   }
 
-  /** Predict for one view; a newer request from the same view rejects this one with Superseded. */
+  /** Predict for one view; a newer request from the same view rejects this one with Superseded. With
+   *  `readout`, the worker also computes the stage's read-out. */
   async predict(view: string, model: string, history: History, request: PredictRequest,
-    onProgress?: (loaded: number, total: number) => void): Promise<Measured & { prediction: Prediction }> {
-    const r = await this.call({ type: 'predict', id: this.nextId++, view, model, history, request }, onProgress);
+    onProgress?: (loaded: number, total: number) => void, readout?: ReadoutInput): Promise<Measured & { prediction: Prediction }> {
+    const r = await this.call({ type: 'predict', id: this.nextId++, view, model, history, request, ...(readout ? { readout } : {}) }, onProgress);
     return { ...r, prediction: r.prediction! };
   }
 

@@ -3,11 +3,12 @@
 // other views wait their turn.
 import { captureWasmMemory, wasmMemoryBytes } from '../bench/wasm-memory';
 import type { Manifest } from '../contract/types';
+import { stageReadout, type StageReadout } from '../ui/readout';
 import { createPredictor } from './factory';
 import { OrtRunner, type GraphTiming, type OrtModule } from './ort-runner';
-import type { ErrorKind, FromWorker, ToWorker } from './protocol';
+import type { ErrorKind, FromWorker, ReadoutInput, ToWorker } from './protocol';
 import { Scheduler, type Job as QueuedJob } from './scheduler';
-import { PredictError, Superseded, type Predictor } from './types';
+import { PredictError, Superseded, type Prediction, type Predictor } from './types';
 
 interface Job extends QueuedJob { msg: Extract<ToWorker, { type: 'load' | 'predict' }> }
 
@@ -90,8 +91,20 @@ async function execute(job: Job): Promise<void> {
   const t0 = performance.now();
   const prediction = await predictor.predict(msg.history, msg.request, () => job.cancelled);
   const ms = performance.now() - t0;
-  post({ type: 'result', id: msg.id, prediction, ms, timings, ...(instrumented ? { wasmBytes: wasmMemoryBytes() } : {}) },
+  const readout = msg.readout ? readoutOf(prediction, msg.history.positions, msg.readout) : {};
+  post({ type: 'result', id: msg.id, prediction, ms, timings, ...readout, ...(instrumented ? { wasmBytes: wasmMemoryBytes() } : {}) },
     [prediction.futures.buffer]);
+}
+
+/** The stage's read-out, on the ground truth cut to the predicted frames (as the page shows it). */
+function readoutOf(p: Prediction, history: Float32Array, input: ReadoutInput): { readout?: StageReadout; readoutError?: string } {
+  try {
+    const pose = p.joints * 3;
+    const frames = input.truth ? Math.min(Math.floor(input.truth.length / pose), p.frames) : 0;
+    return { readout: stageReadout(p, history, frames > 0 ? input.truth!.subarray(0, frames * pose) : null, input.skeleton) };
+  } catch (err) {
+    return { readoutError: (err as Error).message ?? String(err) };
+  }
 }
 
 function kindOf(err: unknown, job: Job): ErrorKind {

@@ -292,13 +292,15 @@ export class PredictController {
       this.inputs.setBusy(loading ? `Loading ${entry.label}…` : 'Predicting…', loading ? 0 : undefined);
       this.markStale(loading ? `Loading ${entry.label}…` : 'Predicting…');
       performance.mark('mf:predict-asked'); // marks: the benchmark's first-prediction timeline
-      const { prediction, ms } = await this.client.predict(this.o.viewId, entry.id, history, request,
-        (loaded, total) => this.inputs?.setBusy(`Loading ${entry.label}… ${(loaded / 1e6).toFixed(1)} MB`, total ? loaded / total : undefined));
+      const rest = m.frames - start - n;
+      const { prediction, ms, readout, readoutError } = await this.client.predict(this.o.viewId, entry.id, history, request,
+        (loaded, total) => this.inputs?.setBusy(`Loading ${entry.label}… ${(loaded / 1e6).toFixed(1)} MB`, total ? loaded / total : undefined),
+        { truth: rest > 0 ? clipWindow(m, start + n, rest) : null, skeleton: m.skeleton });
       this.loaded.add(entry.id);
       performance.mark('mf:prediction-received');
       if (ticket !== this.ticket) return; // a newer request replaces this one
       if (this.o.currentClip() !== m) { this.inputs.setBusy(null); return; } // the user moved on to another clip
-      this.show(m, start, n, prediction, ms, entry, inputs);
+      this.show(m, start, n, prediction, ms, entry, inputs, readout ? { readout } : readoutError ? { error: readoutError } : undefined);
     } catch (err) {
       if (err instanceof Superseded || ticket !== this.ticket) return;
       this.inputs.setBusy(null);
@@ -337,14 +339,21 @@ export class PredictController {
     this.o.stageStatus?.(this.last ? `${doing} ${next} (the figures still show the previous futures)` : `${doing} ${next}`, 'busy');
   }
 
-  private show(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry, inputs: PredictInputs): void {
+  /** `computed`: the read-out the worker computed with the prediction, or why it could not; without
+   *  it (a replay, a client that does not compute it) the read-out is computed here. */
+  private show(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry, inputs: PredictInputs,
+    computed?: { readout: StageReadout } | { error: string }): void {
     this.o.banner.clear('predict');
-    const truthFrames = Math.max(0, Math.min(m.frames - start - n, p.frames));
     let readout: StageReadout | null = null;
-    try {
-      readout = stageReadout(p, clipWindow(m, start, n), truthFrames > 0 ? clipWindow(m, start + n, truthFrames) : null, m.skeleton);
-    } catch (err) {
-      this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
+    if (computed && 'readout' in computed) readout = computed.readout;
+    else if (computed) this.o.banner.show(`The read-out could not be computed: ${computed.error}`, 'warning', 'readout');
+    else {
+      const truthFrames = Math.max(0, Math.min(m.frames - start - n, p.frames));
+      try {
+        readout = stageReadout(p, clipWindow(m, start, n), truthFrames > 0 ? clipWindow(m, start + n, truthFrames) : null, m.skeleton);
+      } catch (err) {
+        this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
+      }
     }
     this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, readout };
     this.shownKey = JSON.stringify([entry.id, inputs.seed, start, inputs.controls, m.name, m.frames, m.origin?.file ?? null]);
