@@ -248,6 +248,20 @@ async function frames(s: Served, plan: Plan) {
   return out;
 }
 
+/** 'software' or 'gpu': what the stage found (it draws without multisampling on a software renderer). */
+async function rendererOf(s: Served): Promise<string | null> {
+  const b = await openBrowser();
+  try {
+    await b.page.goto(`${s.url}?predict=0`);
+    const found = await b.page.waitForSelector('[data-renderer]', { state: 'attached', timeout: 60_000 });
+    return await found.getAttribute('data-renderer');
+  } catch {
+    return null;
+  } finally {
+    await b.close();
+  }
+}
+
 export async function main(planPath: string, outPath: string): Promise<void> {
   const plan: Plan = JSON.parse(readFileSync(planPath, 'utf8'));
   log(`vite build into ${plan.dist}`);
@@ -271,8 +285,9 @@ export async function main(planPath: string, outPath: string): Promise<void> {
     }
     const nav = await navigation(s, plan);
     const fr = await frames(s, plan);
+    const renderer = await rendererOf(s);
     const ortWeb = JSON.parse(readFileSync(resolve(ROOT, 'node_modules/onnxruntime-web/package.json'), 'utf8')).version;
-    writeFileSync(outPath, JSON.stringify({ ...doc, node: process.version, onnxruntime_web: ortWeb, build_ms: buildMs,
+    writeFileSync(outPath, JSON.stringify({ ...doc, renderer, node: process.version, onnxruntime_web: ortWeb, build_ms: buildMs,
       navigation: nav, frames: fr, fps_seconds: FPS_SECONDS, notes }));
   } finally {
     await s.stop();

@@ -78,7 +78,7 @@ def machine(browser: dict, load_start: float) -> dict:
     except OSError:
         pass
     return {"cpu": cpu, "vector": vector, "cores": os.cpu_count(), "os": f"{platform.system()} {platform.release()}",
-            "chromium": browser.get("chromium"), "node": browser.get("node"),
+            "chromium": browser.get("chromium"), "renderer": browser.get("renderer"), "node": browser.get("node"),
             "onnxruntime_web": browser.get("onnxruntime_web"), "python": platform.python_version(),
             "onnxruntime": onnxruntime.__version__, "load_start": load_start, "load_end": os.getloadavg()[0]}
 

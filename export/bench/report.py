@@ -103,6 +103,12 @@ def targets(native: dict, browser: dict, sizes: list[dict], dist: dict, cases: l
     return out
 
 
+def _renderer(kind: str | None) -> str:
+    """The stage's WebGL as the page reported it (web/src/viewer/stage.ts: no multisampling on a CPU renderer)."""
+    return {"software": "software WebGL, drawn without multisampling", "gpu": "WebGL on a GPU, multisampled"}.get(
+        kind or "", "WebGL renderer not reported")
+
+
 def _met(m: bool | None) -> str:
     return {True: "met", False: "**missed**", None: "not measured"}[m]
 
@@ -228,7 +234,7 @@ def markdown(doc: dict) -> str:
            f"`{doc['json_path']}`.", "",
            "## Machine", "",
            f"- CPU: {m['cpu']}, {m['cores']} cores ({', '.join(m.get('vector') or ['vector extensions unknown'])}); {m['os']}",
-           f"- Browser: {m['chromium']} (headless, software WebGL), onnxruntime-web {m['onnxruntime_web']} "
+           f"- Browser: {m['chromium']} (headless, {_renderer(m.get('renderer'))}), onnxruntime-web {m['onnxruntime_web']} "
            "(wasm, 1 thread, graph optimisation 'all')",
            f"- Node {m['node']}; Python {m['python']}, onnxruntime {m['onnxruntime']} (1 thread)",
            f"- Run: {doc['date']}, {doc['seconds']:.0f} s in all; load average (1 min) {m['load_start']:.1f} at the "

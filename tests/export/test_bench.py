@@ -103,3 +103,10 @@ def test_a_recorded_change_is_reported_as_earlier_to_now_medians():
     text = "\n".join(changes(now))
     assert "### fused" in text
     assert "| m | 1800 → 450 | 200 → 200 | 3 → 3 | 12 → 12 | 6.0 → 6.0 | 4100 → 2050 |" in text
+
+
+def test_the_machine_line_names_the_renderer_the_stage_reported():
+    from export.bench.report import _renderer
+    assert _renderer("software") == "software WebGL, drawn without multisampling"
+    assert _renderer("gpu") == "WebGL on a GPU, multisampled"
+    assert _renderer(None) == "WebGL renderer not reported"
