@@ -168,6 +168,16 @@ def analysis(doc: dict) -> list[str]:
             lines.append(f"{c['id']}: {total:.1f} ms in the worker, of which {graphs_ms:.1f} ms in {calls} graph calls; "
                          f"the rest ({total - graphs_ms:.1f} ms) is the predictor's own TypeScript "
                          "(noise, stopping, smoothness, interpolation) and tensor wrapping.")
+    for f in br.get("frames", []):
+        gaps = f.get("gaps_ms") or []
+        if not gaps or f.get("max_gap_ms") is None or f["max_gap_ms"] < FRAME_GAP_MS:
+            continue
+        # the last two intervals follow the result (recording stops two frames after it is shown)
+        where = ("the first frames after the result, which build and first draw the new scene"
+                 if gaps.index(max(gaps)) >= len(gaps) - 2 else "while the worker predicts")
+        lines.append(f"{f['model']} K={f['k']}: the longest gap ({max(gaps):.0f} ms) falls in {where}; with the K=50 "
+                     f"futures playing a frame takes {1000 / f['fps']:.0f} ms on average ({f['fps']:.1f} fps). Frames "
+                     "start on 16.7 ms vsync steps, so every gap under 50 ms means every frame within two steps (33 ms).")
     loads = {mid: spread(v["round_trip_ms"])["median"] for mid, v in br["load"].items()}
     warm_load = {}
     for g in br["graphs"]:

@@ -110,3 +110,16 @@ def test_the_machine_line_names_the_renderer_the_stage_reported():
     assert _renderer("software") == "software WebGL, drawn without multisampling"
     assert _renderer("gpu") == "WebGL on a GPU, multisampled"
     assert _renderer(None) == "WebGL renderer not reported"
+
+
+def test_a_missed_frame_gap_is_placed_before_or_after_the_result():
+    from export.bench.report import analysis
+    def doc(gaps):
+        return {"native": {"graphs": [], "cases": []}, "sizes": [], "machine": {"vector": []}, "profiles": [],
+                "browser": {"graphs": [], "cases": [], "load": {}, "navigation": [],
+                            "frames": [{"model": "m", "k": 50, "gaps_ms": gaps, "max_gap_ms": max(gaps), "fps": 25.0}]}}
+    after, = analysis(doc([17, 17, 33, 117, 50]))
+    assert "first frames after the result" in after and "117 ms" in after and "40 ms on average" in after
+    during, = analysis(doc([17, 83, 17, 33, 17]))
+    assert "while the worker predicts" in during
+    assert analysis(doc([17, 33, 33])) == []   # met: nothing to explain
