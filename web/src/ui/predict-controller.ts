@@ -252,11 +252,11 @@ export class PredictController {
 
   /** Put a prediction on stage as if the worker had returned it for the current inputs (a replay:
    *  tests and the console use it to show a prediction with warnings or cut samples). */
-  present(p: Prediction, ms = 0): void {
+  present(p: Prediction, ms = 0): Promise<void> {
     const m = this.o.currentClip();
     const inputs = this.inputsNow();
-    if (!m || !inputs) return;
-    this.show(m, inputs.start, inputs.model.params.history_frames, p, ms, inputs.model, inputs);
+    if (!m || !inputs) return Promise.resolve();
+    return this.show(m, inputs.start, inputs.model.params.history_frames, p, ms, inputs.model, inputs);
   }
 
   /** Everything a request is made of, as one string (null before the manifest or without a clip). */
@@ -300,7 +300,7 @@ export class PredictController {
       performance.mark('mf:prediction-received');
       if (ticket !== this.ticket) return; // a newer request replaces this one
       if (this.o.currentClip() !== m) { this.inputs.setBusy(null); return; } // the user moved on to another clip
-      this.show(m, start, n, prediction, ms, entry, inputs, readout ? { readout } : readoutError ? { error: readoutError } : undefined);
+      await this.show(m, start, n, prediction, ms, entry, inputs, readout ? { readout } : readoutError ? { error: readoutError } : undefined);
     } catch (err) {
       if (err instanceof Superseded || ticket !== this.ticket) return;
       this.inputs.setBusy(null);
@@ -342,7 +342,7 @@ export class PredictController {
   /** `computed`: the read-out the worker computed with the prediction, or why it could not; without
    *  it (a replay, a client that does not compute it) the read-out is computed here. */
   private show(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry, inputs: PredictInputs,
-    computed?: { readout: StageReadout } | { error: string }): void {
+    computed?: { readout: StageReadout } | { error: string }): Promise<void> {
     this.o.banner.clear('predict');
     let readout: StageReadout | null = null;
     if (computed && 'readout' in computed) readout = computed.readout;
@@ -363,8 +363,24 @@ export class PredictController {
     this.o.view.setSelected(null);
     this.o.player.load(n + Math.max(...p.lengths), m.fps, 0);
     this.o.timeline?.(timelineMarks(n, p, m.fps));
-    this.o.player.play();
     const shown = this.last;
+    // The list, the numbers and the statuses follow once the stage has drawn the new futures, and the
+    // futures play once all is in: at K = 50 building everything in one task, with playback drawing
+    // every frame, made the frames after a result miss two vsyncs (make bench's frame gaps).
+    const ticket = this.ticket;
+    return afterNextFrame().then(afterNextFrame).then(() => {
+      if (this.last !== shown) return undefined; // a newer result took the stage
+      this.describeShown(m, start, n, p, ms, entry, readout, ticket === this.ticket);
+      // and the statuses after the list's own frame, for the same reason
+      return afterNextFrame().then(() => { if (this.last === shown) this.settle(p, entry, ticket === this.ticket); });
+    });
+  }
+
+  /** The second part of show(): the side panel's list and read-out. `current`: no newer prediction was
+   *  asked for in between (else the panel stays marked as out of date). */
+  private describeShown(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry,
+    readout: StageReadout | null, current: boolean): void {
+    const shown = this.last!;
     this.results?.show(p, m.fps, ms, {
       readout, outOfRange: Boolean(p.warnings?.length),
       readoutJson: () => (readout ? readoutJson(readout, {
@@ -372,18 +388,37 @@ export class PredictController {
         history_frames: n, seed: shown.seed, controls: shown.controls, fps: m.fps,
       }) : '{}'),
     });
-    this.inputs?.setBusy(null);
-    const text = this.describe(this.last);
+    if (!current) this.results?.stale(true);
+  }
+
+  /** The last part of show(): the texts and statuses that say the futures are in, then 'done'. */
+  private settle(p: Prediction, entry: ModelEntry, current: boolean): void {
+    const shown = this.last!;
+    const text = this.describe(shown);
     const out = p.warnings?.length ? ' Out of the training range: shown anyway.' : '';
-    this.inputs?.setStatus(`${text}${out}`);
-    this.o.stageStatus?.(`${text}${out}`, 'shown');
-    this.o.status('stale', undefined);
+    if (current) {
+      this.inputs?.setBusy(null);
+      this.inputs?.setStatus(`${text}${out}`);
+      this.o.stageStatus?.(`${text}${out}`, 'shown');
+      this.o.status('stale', undefined);
+    } else {
+      this.results?.stale(true);
+    }
     this.o.status('predictionModel', entry.id);
     this.o.status('predictionK', String(p.k));
     this.o.status('predictionLengths', Array.from(p.lengths).join(','));
     this.o.status('predictionRange', p.warnings?.length ? 'out' : undefined);
-    this.o.status('predictStatus', 'done');
+    if (current) this.o.status('predictStatus', 'done');
     performance.mark('mf:prediction-shown');
     this.o.onShown?.();
+    this.o.player.play();
   }
+}
+
+/** Settles after the next frame has been drawn; a hidden page draws no frames, so at most 200 ms later. */
+function afterNextFrame(): Promise<void> {
+  return new Promise((done) => {
+    requestAnimationFrame(() => setTimeout(done, 0));
+    setTimeout(done, 200);
+  });
 }

@@ -97,6 +97,19 @@ export class Stage {
     });
   }
 
+  /** Like invalidate(), a frame later: after heavy work (a new set of tracks) the first draw gets a
+   *  frame of its own instead of landing in the frame that work delayed. Later invalidate() calls
+   *  before it join it. */
+  invalidateAfterNextFrame(): void {
+    cancelAnimationFrame(this.pending);
+    this.pending = requestAnimationFrame(() => {
+      this.pending = requestAnimationFrame(() => {
+        this.pending = 0;
+        this.render();
+      });
+    });
+  }
+
   /** Render now (the labels too). */
   render(): void {
     this.renderer.render(this.scene, this.camera);

@@ -119,6 +119,8 @@ export class Viewer implements SkeletonView {
         throw new Error(`track ${tr.id}: ${tr.frames} frames x ${tr.joints} joints do not fit ${tr.positions.length} values / ${skeleton.joints.length} joints`);
       }
     }
+    // K = 50 makes this a heavy call: its first draw waits a frame (make bench's frame gaps)
+    this.stage.invalidateAfterNextFrame();
     this.tracks = tracks;
     if (this.skeleton !== skeleton) {
       this.skeleton = skeleton;
@@ -340,6 +342,7 @@ export class Viewer implements SkeletonView {
         element.addEventListener('click', (e) => { e.stopPropagation(); this.pick?.(track.sample ?? null); });
       }
       element.dataset.role = track.role;
+      element.style.display = 'none'; // until the stage's next draw places it
       const object = new CSS2DObject(element);
       object.center.set(0.5, 1);
       this.labelGroup.add(object);
