@@ -123,3 +123,15 @@ def test_a_missed_frame_gap_is_placed_before_or_after_the_result():
     during, = analysis(doc([17, 83, 17, 33, 17]))
     assert "while the worker predicts" in during
     assert analysis(doc([17, 33, 33])) == []   # met: nothing to explain
+
+
+def test_a_small_graph_that_misses_is_split_into_call_cost_and_cost_per_batch_row():
+    from export.bench.report import analysis
+    ids = ["m/step/b1", "m/step/b50"]
+    native = {"m/step/b1": [0.05] * 3, "m/step/b50": [0.099] * 3}
+    browser = {"m/step/b1": [0.05] * 3, "m/step/b50": [0.54] * 3}   # 10 µs a row against 1 µs
+    doc = {"native": {"graphs": [{"id": i, "model": "m", "role": "step", "native_ms": native[i]} for i in ids], "cases": []},
+           "sizes": [{"model": "m", "graphs": {"step": {"nodes": 50}}}], "machine": {"vector": ["avx2", "fma"]}, "profiles": [],
+           "browser": {"graphs": [{"id": i, "ms": browser[i]} for i in ids], "cases": [], "load": {}, "navigation": [], "frames": []}}
+    line = next(x for x in analysis(doc) if x.startswith("m/step:"))
+    assert "10.0 µs against 1.0 µs, 10.0x" in line and "more than the up to 4x" in line
