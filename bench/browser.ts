@@ -217,6 +217,7 @@ async function frames(s: Served, plan: Plan) {
       await page.goto(`${s.url}?model=${encodeURIComponent(m.id)}&k=50`);
       await page.waitForSelector('body[data-predict-status="done"]', { state: 'attached', timeout: 90_000 });
       const k = Number(await page.evaluate(() => document.body.dataset.predictionK));
+      const renderer = await page.getAttribute('[data-renderer]', 'data-renderer');
       // 1. the stage still (playback paused): what the prediction itself costs the main thread
       await page.evaluate(() => window.motionFutures!.player.pause());
       const still = await gapsDuringPrediction(page, 1000);
@@ -236,7 +237,7 @@ async function frames(s: Served, plan: Plan) {
       const moving = await gapsDuringPrediction(page, 1000);
       const max = (xs: number[]) => (xs.length ? Math.max(...xs) : null);
       log(`frames ${m.id} K=${k}: longest gap ${max(still.gaps)?.toFixed(0)} ms still, ${max(moving.gaps)?.toFixed(0)} ms playing; ${fps.toFixed(1)} fps`);
-      out.push({ model: m.id, k, max_gap_ms: max(still.gaps), idle_max_gap_ms: max(still.idle), gaps_ms: still.gaps,
+      out.push({ model: m.id, k, renderer, max_gap_ms: max(still.gaps), idle_max_gap_ms: max(still.idle), gaps_ms: still.gaps,
         prediction_ms: still.ms, fps, playing, playing_max_gap_ms: max(moving.gaps), playing_idle_max_gap_ms: max(moving.idle),
         playing_prediction_ms: moving.ms, playing_gaps_ms: moving.gaps });
     } catch (err) {
@@ -246,20 +247,6 @@ async function frames(s: Served, plan: Plan) {
     }
   }
   return out;
-}
-
-/** 'software' or 'gpu': what the stage found (it draws without multisampling on a software renderer). */
-async function rendererOf(s: Served): Promise<string | null> {
-  const b = await openBrowser();
-  try {
-    await b.page.goto(`${s.url}?predict=0`);
-    const found = await b.page.waitForSelector('[data-renderer]', { state: 'attached', timeout: 60_000 });
-    return await found.getAttribute('data-renderer');
-  } catch {
-    return null;
-  } finally {
-    await b.close();
-  }
 }
 
 export async function main(planPath: string, outPath: string): Promise<void> {
@@ -285,7 +272,8 @@ export async function main(planPath: string, outPath: string): Promise<void> {
     }
     const nav = await navigation(s, plan);
     const fr = await frames(s, plan);
-    const renderer = await rendererOf(s);
+    // 'software' or 'gpu': what the stage found (it draws without multisampling on a software renderer)
+    const renderer = fr.find((f) => f.renderer)?.renderer ?? null;
     const ortWeb = JSON.parse(readFileSync(resolve(ROOT, 'node_modules/onnxruntime-web/package.json'), 'utf8')).version;
     writeFileSync(outPath, JSON.stringify({ ...doc, renderer, node: process.version, onnxruntime_web: ortWeb, build_ms: buildMs,
       navigation: nav, frames: fr, fps_seconds: FPS_SECONDS, notes }));

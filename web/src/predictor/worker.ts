@@ -3,7 +3,7 @@
 // other views wait their turn.
 import { captureWasmMemory, wasmMemoryBytes } from '../bench/wasm-memory';
 import type { Manifest } from '../contract/types';
-import { stageReadout, type StageReadout } from '../ui/readout';
+import { readoutAfter, type StageReadout } from '../ui/readout';
 import { createPredictor } from './factory';
 import { OrtRunner, type GraphTiming, type OrtModule } from './ort-runner';
 import type { ErrorKind, FromWorker, ReadoutInput, ToWorker } from './protocol';
@@ -96,12 +96,10 @@ async function execute(job: Job): Promise<void> {
     [prediction.futures.buffer]);
 }
 
-/** The stage's read-out, on the ground truth cut to the predicted frames (as the page shows it). */
+/** The stage's read-out, or why it could not be computed (the prediction stands either way). */
 function readoutOf(p: Prediction, history: Float32Array, input: ReadoutInput): { readout?: StageReadout; readoutError?: string } {
   try {
-    const pose = p.joints * 3;
-    const frames = input.truth ? Math.min(Math.floor(input.truth.length / pose), p.frames) : 0;
-    return { readout: stageReadout(p, history, frames > 0 ? input.truth!.subarray(0, frames * pose) : null, input.skeleton) };
+    return { readout: readoutAfter(p, history, input.truth, input.skeleton) };
   } catch (err) {
     return { readoutError: (err as Error).message ?? String(err) };
   }

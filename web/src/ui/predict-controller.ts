@@ -19,7 +19,7 @@ import type { TimelineMarks } from './playback-bar';
 import type { Player } from './player';
 import { mountPredictionPanel, seconds, type PredictionPanel } from './prediction-panel';
 import { mountPredictPanel, type PredictPanel } from './predict-panel';
-import { readoutJson, stageReadout, type StageReadout } from './readout';
+import { readoutAfter, readoutJson, type StageReadout } from './readout';
 import { buildRequest } from './request-builder';
 import type { ShownState } from './stage-parts';
 
@@ -348,9 +348,9 @@ export class PredictController {
     if (computed && 'readout' in computed) readout = computed.readout;
     else if (computed) this.o.banner.show(`The read-out could not be computed: ${computed.error}`, 'warning', 'readout');
     else {
-      const truthFrames = Math.max(0, Math.min(m.frames - start - n, p.frames));
+      const rest = m.frames - start - n;
       try {
-        readout = stageReadout(p, clipWindow(m, start, n), truthFrames > 0 ? clipWindow(m, start + n, truthFrames) : null, m.skeleton);
+        readout = readoutAfter(p, clipWindow(m, start, n), rest > 0 ? clipWindow(m, start + n, rest) : null, m.skeleton);
       } catch (err) {
         this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
       }
@@ -370,30 +370,29 @@ export class PredictController {
     const ticket = this.ticket;
     return afterNextFrame().then(afterNextFrame).then(() => {
       if (this.last !== shown) return undefined; // a newer result took the stage
-      this.describeShown(m, start, n, p, ms, entry, readout, ticket === this.ticket);
+      this.describeShown(shown, m.fps, n, entry, ticket === this.ticket);
       // and the statuses after the list's own frame, for the same reason
-      return afterNextFrame().then(() => { if (this.last === shown) this.settle(p, entry, ticket === this.ticket); });
+      return afterNextFrame().then(() => { if (this.last === shown) this.settle(shown, entry, ticket === this.ticket); });
     });
   }
 
   /** The second part of show(): the side panel's list and read-out. `current`: no newer prediction was
    *  asked for in between (else the panel stays marked as out of date). */
-  private describeShown(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry,
-    readout: StageReadout | null, current: boolean): void {
-    const shown = this.last!;
-    this.results?.show(p, m.fps, ms, {
+  private describeShown(shown: Shown, fps: number, n: number, entry: ModelEntry, current: boolean): void {
+    const { prediction: p, readout } = shown;
+    this.results?.show(p, fps, shown.ms, {
       readout, outOfRange: Boolean(p.warnings?.length),
       readoutJson: () => (readout ? readoutJson(readout, {
-        model: entry.id, model_label: entry.label, model_hash: entry.hash, clip: shown.clip, history_start: start,
-        history_frames: n, seed: shown.seed, controls: shown.controls, fps: m.fps,
+        model: entry.id, model_label: entry.label, model_hash: entry.hash, clip: shown.clip, history_start: shown.start,
+        history_frames: n, seed: shown.seed, controls: shown.controls, fps,
       }) : '{}'),
     });
     if (!current) this.results?.stale(true);
   }
 
   /** The last part of show(): the texts and statuses that say the futures are in, then 'done'. */
-  private settle(p: Prediction, entry: ModelEntry, current: boolean): void {
-    const shown = this.last!;
+  private settle(shown: Shown, entry: ModelEntry, current: boolean): void {
+    const p = shown.prediction;
     const text = this.describe(shown);
     const out = p.warnings?.length ? ' Out of the training range: shown anyway.' : '';
     if (current) {

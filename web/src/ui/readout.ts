@@ -78,6 +78,14 @@ export function stageReadout(p: Prediction, history: Float32Array, truth: Float3
   };
 }
 
+/** The read-out on the clip's frames after the history (`after`: any number of them, or none), cut to
+ *  the predicted frames as the stage shows them; the worker and a replay on the page both call it. */
+export function readoutAfter(p: Prediction, history: Float32Array, after: Float32Array | null, skeleton: Skeleton): StageReadout {
+  const pose = p.joints * 3;
+  const frames = after ? Math.min(Math.floor(after.length / pose), p.frames) : 0;
+  return stageReadout(p, history, frames > 0 ? after!.subarray(0, frames * pose) : null, skeleton);
+}
+
 /** What "Copy numbers" puts on the clipboard: the read-out with what it was computed on. */
 export function readoutJson(r: StageReadout, about: Record<string, unknown>): string {
   const round = (v: number | undefined) => (v === undefined ? undefined : Number(v.toPrecision(6)));

@@ -238,8 +238,9 @@ export class SkeletonFigures {
       this.sphere = shape(new SphereGeometry(1, ...detail.sphere));
       this.capacity = 0;
     }
-    this.sphereJoints = detail.everyJoint ? this.jointSides.map((_, j) => j) : [this.identityJoint];
     if (figures <= this.capacity && this.capacity > 0) return;
+    // a new skeleton or detail zeroes the capacity, so the spheres' joints are set whenever they change
+    this.sphereJoints = detail.everyJoint ? this.jointSides.map((_, j) => j) : [this.identityJoint];
     // Grow geometrically so adding samples one by one does not rebuild every time.
     const capacity = Math.max(8, figures, this.capacity * 2);
     const perFigure = this.verticesPerFigure();

@@ -7,7 +7,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { CSS2DRenderer } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
-import { requireWebGL2, softwareWebGL, WebGLUnavailableError } from './webgl';
+import { requireWebGL2, WebGLUnavailableError } from './webgl';
 
 interface Theme { background: Color; gridCentre: Color; grid: Color }
 
@@ -44,10 +44,9 @@ export class Stage {
 
   /** Throws WebGLUnavailableError when no usable WebGL 2 context can be made. */
   constructor(private readonly container: HTMLElement, private readonly onContextLost?: (lost: boolean) => void) {
-    requireWebGL2();
     // Multisampling on a CPU renderer doubles every frame's cost: the 50 figures of K = 50 took 21 ms
     // a draw with it and 8-10 ms without (make bench probe), so software WebGL draws without it.
-    this.software = softwareWebGL();
+    this.software = requireWebGL2().software;
     try {
       this.renderer = new WebGLRenderer({ antialias: !this.software, powerPreference: 'high-performance' });
     } catch (err) {

@@ -162,7 +162,7 @@ export class Viewer implements SkeletonView {
   resetView(): void { this.stage.resetView(); }
 
   dispose(): void {
-    this.clearDecorations();
+    this.clearLabels();
     this.paths.dispose();
     this.figuresMesh.dispose();
     this.stage.dispose();
@@ -300,9 +300,7 @@ export class Viewer implements SkeletonView {
     return { direction, boxes, centres };
   }
 
-  private clearDecorations(): void {
-    this.paths.set([]);
-    this.pathOwners = [];
+  private clearLabels(): void {
     for (const l of this.labels) l.element.remove();
     this.labelGroup.clear();
     this.labels = [];
@@ -310,7 +308,8 @@ export class Viewer implements SkeletonView {
 
   /** Root paths (one per figure placed, history copies included) and labels (one per figure, or per cell). */
   private decorate(): void {
-    this.clearDecorations();
+    this.clearLabels();
+    this.pathOwners = [];
     this.paths.set(this.arrangement.placements.map((p) => {
       const track = this.tracks[p.track];
       const points = new Float32Array(track.frames * 3);

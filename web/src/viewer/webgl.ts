@@ -1,4 +1,5 @@
-// Probe for WebGL 2 before three.js is asked for a renderer (three.js needs WebGL 2).
+// Probe for WebGL 2 before three.js is asked for a renderer (three.js needs WebGL 2), and for whether
+// the CPU draws it.
 
 export class WebGLUnavailableError extends Error {
   constructor(message: string) {
@@ -7,42 +8,37 @@ export class WebGLUnavailableError extends Error {
   }
 }
 
-export function webglSupport(): 'webgl2' | 'webgl' | null {
-  try {
-    const canvas = document.createElement('canvas');
-    const gl2 = canvas.getContext('webgl2');
-    const gl = gl2 ?? canvas.getContext('webgl');
-    // Release the probe's context now: browsers cap live contexts.
-    gl?.getExtension('WEBGL_lose_context')?.loseContext();
-    return gl2 ? 'webgl2' : gl ? 'webgl' : null;
-  } catch {
-    return null;
-  }
-}
-
 const SOFTWARE = /swiftshader|llvmpipe|softpipe|software/i;
 
 /**
- * Whether WebGL 2 here is drawn by the CPU (SwiftShader, llvmpipe: a machine without a usable GPU).
- * The browser says so by refusing a context that asks to fail on a major performance caveat; the
- * renderer's name is the fallback where that flag is not honoured.
+ * What WebGL this browser offers, and whether its WebGL 2 is drawn by the CPU (SwiftShader, llvmpipe:
+ * a machine without a usable GPU). A browser says so by refusing a context that must not have a major
+ * performance caveat; the renderer's name is the fallback where that flag is not honoured. One probe
+ * context in the usual case, released at once: browsers cap live contexts.
  */
-export function softwareWebGL(): boolean {
+function probeWebGL(): { support: 'webgl2' | 'webgl' | null; software: boolean } {
   try {
     const fast = document.createElement('canvas').getContext('webgl2', { failIfMajorPerformanceCaveat: true });
-    if (!fast) return true;
-    const info = fast.getExtension('WEBGL_debug_renderer_info');
-    const name = String(info ? fast.getParameter(info.UNMASKED_RENDERER_WEBGL) : fast.getParameter(fast.RENDERER));
-    fast.getExtension('WEBGL_lose_context')?.loseContext();
-    return SOFTWARE.test(name);
+    if (fast) {
+      const info = fast.getExtension('WEBGL_debug_renderer_info');
+      const name = String(info ? fast.getParameter(info.UNMASKED_RENDERER_WEBGL) : fast.getParameter(fast.RENDERER));
+      fast.getExtension('WEBGL_lose_context')?.loseContext();
+      return { support: 'webgl2', software: SOFTWARE.test(name) };
+    }
+    const canvas = document.createElement('canvas');
+    const gl2 = canvas.getContext('webgl2');
+    const gl = gl2 ?? canvas.getContext('webgl');
+    gl?.getExtension('WEBGL_lose_context')?.loseContext();
+    return { support: gl2 ? 'webgl2' : gl ? 'webgl' : null, software: true };
   } catch {
-    return false;
+    return { support: null, software: false };
   }
 }
 
-export function requireWebGL2(): void {
-  const support = webglSupport();
-  if (support === 'webgl2') return;
+/** Throws WebGLUnavailableError without WebGL 2; says whether the CPU draws it. */
+export function requireWebGL2(): { software: boolean } {
+  const { support, software } = probeWebGL();
+  if (support === 'webgl2') return { software };
   throw new WebGLUnavailableError(support === 'webgl'
     ? 'This browser offers WebGL 1 only; the 3D viewer needs WebGL 2.'
     : 'WebGL is not available in this browser (it may be turned off, or the graphics driver is blocked), so the 3D viewer cannot be shown.');
