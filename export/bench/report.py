@@ -12,6 +12,7 @@ K50_MS = 250.0
 MAX_RATIO = 4.0
 FIRST_PREDICTION_MS = 2500.0
 FRAME_GAP_MS = 50.0
+ORDER_EFFECT = 1.5     # shared-worker over fresh-worker time worth a line in the analysis
 ONNX_TOTAL_GZ = 2e6
 DIST_GZ = 6e6          # dist/ without the served clips
 CLIPS_GZ = 1.5e6       # the served clips (issue 17: their own measured budget)
@@ -113,6 +114,19 @@ def _met(m: bool | None) -> str:
     return {True: "met", False: "**missed**", None: "not measured"}[m]
 
 
+def order_effect(graphs: list[dict]) -> str | None:
+    """A line naming the graphs much slower in the shared worker than alone (bench/browser.ts: graphs())."""
+    slow = sorted(((spread(g["shared_ms"])["median"] / spread(g["ms"])["median"], g["id"]) for g in graphs
+                   if g.get("ms") and g.get("shared_ms")), reverse=True)
+    slow = [(x, gid) for x, gid in slow if x >= ORDER_EFFECT]
+    if not slow:
+        return None
+    return (f"Order effect: {len(slow)} graph(s) ran at least {ORDER_EFFECT}x slower in a worker that had run other "
+            f"graphs first than alone ({', '.join(f'{gid} {x:.1f}x' for x, gid in slow[:4])}). V8 optimises "
+            "onnxruntime's wasm with call feedback from the graphs before; a page where the user switches models "
+            "can see these times.")
+
+
 def analysis(doc: dict) -> list[str]:
     """Facts computed from the run that explain the misses (bullets for the markdown)."""
     nat, br = doc["native"], doc["browser"]
@@ -183,6 +197,9 @@ def analysis(doc: dict) -> list[str]:
         lines.append(f"{gid}: {b_lo:.3f} ms at batch {batch[lo['id']]} and {b_hi:.3f} ms at batch {batch[hi['id']]} in the "
                      f"browser, {n_lo:.3f} and {n_hi:.3f} ms natively. Each further batch row (its arithmetic) costs "
                      f"{per_b:.1f} µs against {per_n:.1f} µs, {x:.1f}x: {why}. The fixed cost of a call does not set this ratio.")
+    line = order_effect(br["graphs"])
+    if line:
+        lines.append(line)
     for c in br["cases"]:
         if not c["id"].endswith("/k10"):
             continue
@@ -301,18 +318,26 @@ def markdown(doc: dict) -> str:
             "Each graph the cases called, at each batch, on the inputs the predictor gave it "
             "(bench page's graph worker; native: one onnxruntime session, one thread). The browser's clock ticks in "
             "0.1 ms steps (no cross-origin isolation), so each browser sample is the mean of enough back-to-back runs "
-            "to last 5 ms.", ""]
+            "to last 5 ms. `browser`: the graph alone in a fresh worker (after a 2-node opener session: Chromium runs a worker's first session slower for its life), warmed on itself for 1 s; the ratio uses it. "
+            "`shared worker`: every graph in one worker in this table's order, as on a page where the user has "
+            "switched models; V8 optimises onnxruntime's wasm with call feedback from the graphs run before, "
+            "so this column depends on the order.", ""]
     rows = []
     for g in br["graphs"]:
         n = nat_graphs[g["id"]]
         facts = sizes[n["model"]]["graphs"][n["role"]]
         if g.get("ms"):
             b = spread(g["ms"])
-            rows.append([g["id"], str(facts["nodes"]), fmt_ms(b), fmt_ms(spread(n["native_ms"])),
-                         f"{ratio(g['ms'], n['native_ms']):.1f}"])
+            sh = g.get("shared_ms")
+            rows.append([g["id"], str(facts["nodes"]), fmt_ms(b), fmt_ms(spread(sh)) if sh else "—",
+                         fmt_ms(spread(n["native_ms"])), f"{ratio(g['ms'], n['native_ms']):.1f}",
+                         f"{spread(sh)['median'] / b['median']:.2f}" if sh else "—"])
         else:
-            rows.append([g["id"], str(facts["nodes"]), f"error: {g.get('error')}", fmt_ms(spread(n["native_ms"])), "—"])
-    out += [table(["graph/batch", "nodes", "browser", "native", "ratio"], rows), ""]
+            rows.append([g["id"], str(facts["nodes"]), f"error: {g.get('error')}", "—", fmt_ms(spread(n["native_ms"])), "—", "—"])
+    out += [table(["graph/batch", "nodes", "browser", "shared worker", "native", "ratio", "shared/fresh"], rows), ""]
+    line = order_effect(br["graphs"])
+    if line:
+        out += [line, ""]
 
     out += ["### Attempts on the ratio", "",
             "At the K=10 batch: the served graph with lower session optimisation levels in the browser, "

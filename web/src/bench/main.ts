@@ -40,6 +40,8 @@ export interface GraphSpec {
   optimization?: GraphJob['optimization'];
   profile?: boolean;
   keepOutputs?: boolean;
+  /** Time in a new worker: a new onnxruntime wasm instance whose compiled code no other graph has shaped. */
+  fresh?: boolean;
 }
 
 const root = new URL('./', location.href).href;
@@ -104,6 +106,14 @@ function decode(base64: string): ArrayBuffer {
 }
 
 function graph(spec: GraphSpec): Promise<GraphResult> {
+  if (spec.fresh && graphWorker) {
+    // V8 optimises onnxruntime's wasm with call feedback from the graphs run so far, so a graph's
+    // time in a shared worker depends on what ran before it (bench/browser.ts: graphs()).
+    graphWorker.terminate();
+    graphWorker = null;
+    for (const [id, resolve] of graphJobs) resolve({ id, error: 'the graph worker was replaced' });
+    graphJobs.clear();
+  }
   graphWorker ??= new Worker(new URL('./graph-worker.ts', import.meta.url), { type: 'module' });
   graphWorker.onmessage = (ev: MessageEvent<GraphResult>) => {
     graphJobs.get(ev.data.id)?.(ev.data);
