@@ -6,6 +6,7 @@ import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import type { WatParams } from '../../web/src/predictor/wat';
 import type { BrowserSession } from './browser';
+import { defaultHistory, index } from './data';
 import { compose, failed, NO_PROBLEMS, openPredictPage, predicted, servedModel, stageShot, waiting } from './predict-page';
 
 const baseUrl = inject('baseUrl');
@@ -26,6 +27,37 @@ describe('WAT (RNN) in the browser', () => {
     page = session.page;
   });
   afterAll(async () => { await session?.close(); });
+
+  it('asks for the action a newly picked clip shows, until the user composes a sequence', async () => {
+    const chips = () => page.locator('.action-chip').allTextContents();
+    const asChips = (seq: string[]) => seq.map((a, i) => `${i + 1}. ${pretty(a)}×`);
+    const pick = async (name: string) => {
+      await page.locator(`[data-clip="${name}"]`).click();
+      await page.waitForSelector(`body[data-current-clip="${name}"][data-clip-status="ready"]`, { state: 'attached' });
+    };
+    const home = defaultHistory().clip;
+    // a held-out clip of another action the model knows (a dance, a kick, ...)
+    const other = index.clips.find((c) => c.role === 'test' && c.action !== home.action && params.actions.includes(c.action))!;
+    expect(other, 'a test clip of a second known action').toBeTruthy();
+    await page.locator('#model-select').selectOption('wat-rnn');
+    expect(params.actions).toContain(home.action);
+    expect(await chips()).toEqual(asChips([home.action]));
+    await pick(other.name);
+    expect(await chips()).toEqual(asChips([other.action]));
+    // another model starts from its default sequence, which then follows the clip too
+    const transformer = servedModel('wat-transformer');
+    await page.locator('#model-select').selectOption(transformer.id);
+    const knows = (transformer.params as unknown as WatParams).actions.includes(other.action);
+    const fallback = (transformer.controls.find((c) => c.type === 'actions')?.default ?? []) as string[];
+    expect(await chips()).toEqual(asChips(knows ? [other.action] : fallback));
+    await page.locator('#model-select').selectOption('wat-rnn');
+    // a composed sequence is the user's: a new clip leaves it
+    const composed = [home.action, other.action];
+    await compose(page, composed);
+    await pick(home.name);
+    expect(await chips()).toEqual(asChips(composed));
+    expect(session.problems.pageErrors).toEqual([]);
+  });
 
   it(`predicts K = 10 futures for ${SEQUENCE.join(' -> ')} from a test-split history`, async () => {
     await page.locator('#model-select').selectOption('wat-rnn');

@@ -376,12 +376,10 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       // the index's default history, moved past a standing start (motion/moving-start.ts)
       predictor.setStart(movingStart(motion.positions, motion.frames, motion.joints, motion.fps, clips.defaultStart(motion.name)!));
     }
-    // The first view predicts the action the history shows, when the model knows it.
-    const entry = predictor.inputsNow()?.model;
-    const sequence = entry?.controls.find((c) => c.type === 'actions');
-    if (firstView && motion && sequence && !linkParams.has(sequence.id) && predictor.manifest?.actions.includes(motion.action)) {
-      predictor.setInputs({ controls: { [sequence.id]: [motion.action] } });
-    }
+    // The first view predicts the action the history shows, when the model knows it; later clips and
+    // models do too until the user composes a sequence. A link's sequence is kept as it came.
+    const sequence = predictor.inputsNow()?.model.controls.find((c) => c.type === 'actions');
+    predictor.followClip(firstView && !(sequence && linkParams.has(sequence.id)));
     linking = true;
     refreshShare();
     if (!options.autoPredict && motion) {

@@ -21,6 +21,7 @@ import { mountPredictionPanel, seconds, type PredictionPanel } from './predictio
 import { mountPredictPanel, type PredictPanel } from './predict-panel';
 import { readoutAfter, readoutJson, type StageReadout } from './readout';
 import { buildRequest } from './request-builder';
+import { followedSequence } from './follow-action';
 import type { ShownState } from './stage-parts';
 
 /** Pause after the last change before predicting again (ms). */
@@ -134,6 +135,10 @@ export class PredictController {
    *  either asks for nothing new. */
   private asked: string | null = null;
   private shownKey: string | null = null;
+  /** Whether a new clip or model sets the action sequence to the clip's action (followClip), and the
+   *  sequence the page set that way last. */
+  private followsClip = false;
+  private pageSequence: string[] | null = null;
 
   constructor(private readonly o: PredictOptions) {}
 
@@ -202,6 +207,25 @@ export class PredictController {
   clipChanged(m: Motion | null, entry: ModelEntry | null = this.inputs?.model() ?? null): void {
     if (!this.inputs || !entry) return;
     this.inputs.history.setClip(m, entry.params.history_frames);
+    if (this.followsClip) this.followAction(m, entry);
+  }
+
+  /** From now on, a new clip or model asks for the clip's action while the sequence is still the
+   *  page's (ui/follow-action.ts); `now`: also for the clip on stage (a first view, not a link). */
+  followClip(now: boolean): void {
+    this.followsClip = true;
+    if (now) this.followAction(this.o.currentClip(), this.inputs?.model() ?? null);
+  }
+
+  private followAction(m: Motion | null, entry: ModelEntry | null): void {
+    const spec = entry?.controls.find((c) => c.type === 'actions');
+    if (!m || !spec || !this.inputs || !this.manifest) return;
+    const current = (this.inputs.controls().values()[spec.id] as string[] | undefined) ?? [];
+    const next = followedSequence(current, this.pageSequence, (spec.default as string[] | undefined) ?? [], m.action,
+      this.manifest.actions);
+    if (!next) return;
+    this.inputs.controls().set(spec.id, next);
+    this.pageSequence = next;
   }
 
   setStart(frame: number): void {
