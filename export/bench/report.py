@@ -192,8 +192,9 @@ def analysis(doc: dict) -> list[str]:
             continue
         x = per_b / per_n
         why = (f"within the up to {peak}x per instruction that {vec} gives over wasm's 128-bit SIMD" if x <= peak else
-               f"more than the up to {peak}x per instruction that {vec} gives over wasm's 128-bit SIMD, so the wasm "
-               "kernels also run these small matrix products less efficiently")
+               f"more than the up to {peak}x per instruction that {vec} gives over wasm's 128-bit SIMD, so vector "
+               "width alone does not explain it (compare the shared-worker column: V8's code for the graph also "
+               "depends on what ran before)")
         lines.append(f"{gid}: {b_lo:.3f} ms at batch {batch[lo['id']]} and {b_hi:.3f} ms at batch {batch[hi['id']]} in the "
                      f"browser, {n_lo:.3f} and {n_hi:.3f} ms natively. Each further batch row (its arithmetic) costs "
                      f"{per_b:.1f} µs against {per_n:.1f} µs, {x:.1f}x: {why}. The fixed cost of a call does not set this ratio.")
@@ -318,7 +319,8 @@ def markdown(doc: dict) -> str:
             "Each graph the cases called, at each batch, on the inputs the predictor gave it "
             "(bench page's graph worker; native: one onnxruntime session, one thread). The browser's clock ticks in "
             "0.1 ms steps (no cross-origin isolation), so each browser sample is the mean of enough back-to-back runs "
-            "to last 5 ms. `browser`: the graph alone in a fresh worker (after a 2-node opener session: Chromium runs a worker's first session slower for its life), warmed on itself for 1 s; the ratio uses it. "
+            "to last 5 ms. `browser`: the graph alone in a fresh worker (after a 2-node opener session: Chromium "
+            "runs a worker's first session slower for its life), warmed on itself for 1 s; the ratio uses it. "
             "`shared worker`: every graph in one worker in this table's order, as on a page where the user has "
             "switched models; V8 optimises onnxruntime's wasm with call feedback from the graphs run before, "
             "so this column depends on the order.", ""]

@@ -316,10 +316,9 @@ export class PredictController {
       this.inputs.setBusy(loading ? `Loading ${entry.label}…` : 'Predicting…', loading ? 0 : undefined);
       this.markStale(loading ? `Loading ${entry.label}…` : 'Predicting…');
       performance.mark('mf:predict-asked'); // marks: the benchmark's first-prediction timeline
-      const rest = m.frames - start - n;
       const { prediction, ms, readout, readoutError } = await this.client.predict(this.o.viewId, entry.id, history, request,
         (loaded, total) => this.inputs?.setBusy(`Loading ${entry.label}… ${(loaded / 1e6).toFixed(1)} MB`, total ? loaded / total : undefined),
-        { truth: rest > 0 ? clipWindow(m, start + n, rest) : null, skeleton: m.skeleton });
+        { truth: truthAfter(m, start, n), skeleton: m.skeleton });
       this.loaded.add(entry.id);
       performance.mark('mf:prediction-received');
       if (ticket !== this.ticket) return; // a newer request replaces this one
@@ -372,9 +371,8 @@ export class PredictController {
     if (computed && 'readout' in computed) readout = computed.readout;
     else if (computed) this.o.banner.show(`The read-out could not be computed: ${computed.error}`, 'warning', 'readout');
     else {
-      const rest = m.frames - start - n;
       try {
-        readout = readoutAfter(p, clipWindow(m, start, n), rest > 0 ? clipWindow(m, start + n, rest) : null, m.skeleton);
+        readout = readoutAfter(p, clipWindow(m, start, n), truthAfter(m, start, n), m.skeleton);
       } catch (err) {
         this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
       }
@@ -436,6 +434,12 @@ export class PredictController {
     this.o.onShown?.();
     this.o.player.play();
   }
+}
+
+/** The clip's frames after an n-frame history from `start` (the read-out's truth), or null when none follow. */
+function truthAfter(m: Motion, start: number, n: number): Float32Array | null {
+  const rest = m.frames - start - n;
+  return rest > 0 ? clipWindow(m, start + n, rest) : null;
 }
 
 /** Settles after the next frame has been drawn; a hidden page draws no frames, so at most 200 ms later. */
