@@ -31,7 +31,7 @@ CM = 100.0
 
 def mpjpe_cm_per_sample(futures: np.ndarray, truth: np.ndarray, root_relative: bool) -> tuple[np.ndarray, np.ndarray]:
     """Each sample's MPJPE over the truth's frames and at its last frame (cm): two [K] arrays.
-    Samples longer than the truth [T, J, 3] are cut to it."""
+    Samples longer than the truth [T, J, 3] are cut to it. TypeScript twin: realism.ts mpjpeCmPerSample."""
     if np.shape(futures)[1] < len(truth):
         raise ValueError(f"the futures have {np.shape(futures)[1]} frames, fewer than the truth's {len(truth)}")
     if root_relative:
@@ -41,14 +41,16 @@ def mpjpe_cm_per_sample(futures: np.ndarray, truth: np.ndarray, root_relative: b
 
 
 def mpjpe_cm(futures: np.ndarray, truth: np.ndarray, root_relative: bool) -> tuple[float, float]:
-    """Best-of-K (over frames, final frame) MPJPE in cm, each minimised over the samples on its own."""
+    """Best-of-K (over frames, final frame) MPJPE in cm, each minimised over the samples on its own.
+    TypeScript twin: realism.ts mpjpeCm."""
     ade_k, fde_k = mpjpe_cm_per_sample(futures, truth, root_relative)
     return float(ade_k.min()), float(fde_k.min())
 
 
 def pose_spread_cm(futures: np.ndarray) -> tuple[float, float]:
     """(at the last frame, over all frames): the mean over sample pairs of the mean per-joint distance
-    between root-relative poses [K, T, J, 3] (cm); (0, 0) for one sample."""
+    between root-relative poses [K, T, J, 3] (cm); (0, 0) for one sample. TypeScript twin: realism.ts
+    poseSpreadCm."""
     f = _root_relative(np.asarray(futures, dtype=np.float64))
     if len(f) < 2:
         return 0.0, 0.0

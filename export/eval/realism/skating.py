@@ -30,7 +30,8 @@ SIDES = (("left_ankle", "left_toe"), ("right_ankle", "right_toe"))
 
 def contact_speeds(motion: np.ndarray, fps: int = FPS, band: float = CONTACT_BAND,
                    skeleton: Skeleton = SKELETON) -> np.ndarray:
-    """The horizontal speeds (m/s) of every foot-contact step of a world motion [T, J, 3], both sides: [n]."""
+    """The horizontal speeds (m/s) of every foot-contact step of a world motion [T, J, 3], both sides: [n].
+    TypeScript twin: realism.ts contactSpeeds."""
     m = np.asarray(motion, dtype=np.float64)
     out = []
     for names in SIDES:
@@ -44,6 +45,7 @@ def contact_speeds(motion: np.ndarray, fps: int = FPS, band: float = CONTACT_BAN
 
 
 def median_contact_speed(speeds: np.ndarray) -> float:
-    """The median of pooled contact speeds (m/s); NaN when no step touched the floor."""
+    """The median of pooled contact speeds (m/s); NaN when no step touched the floor. TypeScript twins:
+    realism.ts medianContactSpeed, and footSkating for the median of each of K samples."""
     s = np.asarray(speeds, dtype=np.float64).ravel()
     return float(np.median(s)) if s.size else float("nan")
