@@ -12,7 +12,9 @@ from .paths import CONFIGS_DIR, ROOT
 EXPORT_DIR = ROOT / "export"
 # What a model computes depends on its method's module, the shared training/export path, and what
 # those import inside export/. Hashing that import closure (not every file) keeps an edit to, say,
-# the evaluation or the BVH reader from marking every committed model stale.
+# the evaluation from marking every committed model stale; the data readers (data/bvh.py among them)
+# are in the closure, since the pipeline converts the data. Each file is hashed as its syntax tree
+# without docstrings (normalised_code), so comments, docstrings and formatting never stale a model.
 _PIPELINE = "export.pipeline"
 # The method registry maps names to classes; adding a method there changes no existing model.
 _NOT_HASHED = {"export.methods"}
@@ -99,10 +101,24 @@ def code_files(method_module: str) -> list[Path]:
     return sorted({p for m, p in seen.items() if m not in _NOT_HASHED})
 
 
+def normalised_code(source: str, name: str = "<code>") -> str:
+    """What a file runs: its syntax tree without docstrings or positions. Comments, docstrings, blank
+    lines, line breaks and quote styles leave it unchanged; any change to what executes does not."""
+    tree = ast.parse(source, name)
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and body \
+                and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+                and isinstance(body[0].value.value, str):
+            node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree, annotate_fields=False, include_attributes=False)
+
+
 def code_hash(method_module: str) -> str:
     h = hashlib.sha256()
     for path in code_files(method_module):
-        h.update(str(path.relative_to(EXPORT_DIR)).encode() + b"\0" + path.read_bytes() + b"\0")
+        code = normalised_code(path.read_text(), str(path))
+        h.update(str(path.relative_to(EXPORT_DIR)).encode() + b"\0" + code.encode() + b"\0")
     return h.hexdigest()
 
 

@@ -2,21 +2,21 @@
 pybullet wheel as a second source.
 
 DeepMimic's clips are one capture each (the only acrobatics: backflip, cartwheel, roll, ...), so they
-are train-only: no person of theirs can be held out. Same-named actions share a label across the two
-sources: DeepMimic's walk and walker takes are "walk", its run is CMU's "run_jog", its kick joins
-CMU's "kick" (CMU holds out the soccer kicks of subject 10; DeepMimic's is a martial-arts kick like
-the trained karate kicks of subject 135). Every other DeepMimic action keeps its own name.
+are train-only: no person of theirs can be held out. Both sources' labels are folded into the served
+vocabulary (data/vocabulary.py): DeepMimic's walk and walker takes are "walk", its run "run", its
+dance_a and dance_b "dance", its kick joins CMU's "kick" (CMU holds out the soccer kicks of subject
+10; DeepMimic's is a martial-arts kick like the trained karate kicks of subject 135). Every other
+DeepMimic action keeps its own name. The split by person is checked on the folded labels.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-from . import split
+from . import split, vocabulary
 from .clip import Clip, Split
 from .cmu import CMU_DIR, CmuSource, load_index
 from .sources import DeepMimicSource, MotionSource
 
-SHARED_LABELS = {"walk": "walk", "run": "run_jog", "kick": "kick"}
 DEEPMIMIC_SUBJECT = "deepmimic"
 
 
@@ -29,9 +29,12 @@ class DefaultSource(MotionSource):
 
     def clips(self) -> list[Clip]:
         out = self.cmu.clips()
+        for clip in out:
+            clip.source = {**clip.source, "action_fine": clip.action}
+            clip.action = vocabulary.label(clip.action)
         for clip, _ in self.deepmimic._load():
             clip.name = f"deepmimic_{clip.name}"
-            clip.action = SHARED_LABELS.get(clip.action, clip.action)
+            clip.action = vocabulary.label(clip.action)
             clip.subject = DEEPMIMIC_SUBJECT
             clip.split = Split("train", [(0, len(clip))], [])
             out.append(clip)
@@ -39,12 +42,17 @@ class DefaultSource(MotionSource):
         dupes = {n for n in names if names.count(n) > 1}
         if dupes:
             raise ValueError(f"{self.name}: clip names must be unique, repeated: {sorted(dupes)}")
+        problems = split.person_split_problems(out, frozenset({DEEPMIMIC_SUBJECT}))
+        if problems:
+            raise ValueError(f"{self.name}: the split by person fails: {'; '.join(problems)}")
         return out
 
     def split_rules(self) -> list[str]:
         return self.cmu.split_rules() + [
-            "the DeepMimic clips (one capture each, one performer) are train-only; same-named actions share a "
-            f"label: {', '.join(f'DeepMimic {a} -> {b}' for a, b in SHARED_LABELS.items())}"]
+            "the DeepMimic clips (one capture each, one performer) are train-only",
+            "labels are folded into the served vocabulary (export/data/vocabulary.py): "
+            + "; ".join(f"{a} <- {', '.join(sorted(f for f, b in vocabulary.FOLD.items() if b == a))}"
+                        for a in sorted(set(vocabulary.FOLD.values())))]
 
     def notes(self) -> dict[str, str]:
         return dict(split.HELD_OUT_NOTES)

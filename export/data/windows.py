@@ -14,6 +14,7 @@ import numpy as np
 
 from ..ops.facing import canonicalise
 from ..ops.mirror import mirror_positions
+from .balance import example_weights
 from .clip import Clip
 from .skeleton import SKELETON
 
@@ -25,6 +26,7 @@ class Window:
     positions: np.ndarray      # [T, J, 3] canonical: facing +z, root channel at 0, at frame history-1
     frames: np.ndarray         # [T] frame index in the source clip
     mirrored: bool = False
+    subject: object = None     # the clip's person (data/balance.py weighs people within an action)
 
 
 def _repeatable(clip: Clip, part: str) -> bool:
@@ -57,9 +59,15 @@ def windows(clips: list[Clip], part: str, length: int, history: int, stride: int
             for start in range(a, b - length + 1, stride):
                 idx = np.arange(start, start + length)
                 cut.append((clip, clip.positions[idx], idx))
-    out = [Window(c.name, c.action, canonicalise(p, history - 1, c.skeleton)[0], idx) for c, p, idx in cut]
+    out = [Window(c.name, c.action, canonicalise(p, history - 1, c.skeleton)[0], idx, False, c.subject)
+           for c, p, idx in cut]
     if mirror:
         # Mirror first, then face +z again: the mirror plane is the body's own sagittal plane.
         out += [Window(c.name, c.action, canonicalise(mirror_positions(p, SKELETON), history - 1, SKELETON)[0],
-                       idx, True) for c, p, idx in cut]
+                       idx, True, c.subject) for c, p, idx in cut]
     return out
+
+
+def window_weights(ws: list[Window]) -> np.ndarray:
+    """Sampling weights of training windows by the balance rule (data/balance.py)."""
+    return example_weights([w.action for w in ws], [w.subject for w in ws])

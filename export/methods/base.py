@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
 import torch
 from torch import nn
 
@@ -37,6 +38,7 @@ class TrainingData:
     tensors: dict[str, torch.Tensor]          # equal first dimension: one row per training example
     stats: dict[str, torch.Tensor] = field(default_factory=dict)
     notes: dict = field(default_factory=dict)
+    weights: np.ndarray | None = None          # per-example sampling weights (data/balance.py); None: uniform
 
     def __len__(self) -> int:
         return len(next(iter(self.tensors.values())))

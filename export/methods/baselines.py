@@ -7,7 +7,7 @@ from torch import nn
 
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
-from ..data.windows import windows
+from ..data.windows import window_weights, windows
 from ..models.regression_gru import RegressionGRU
 from ..models.zero_velocity import ZeroVelocity
 from ..ops.floor import floor_penalty
@@ -61,7 +61,7 @@ class RegressionMethod(_DirectMethod):
             "pose_std": hist.reshape(-1, J * 3).std(0).clamp_min(1e-3),
             "offset_std": offsets.reshape(-1, J * 3).std(0).clamp_min(1e-3),
         }
-        return TrainingData({"history": hist, "future": fut}, stats, {"windows": len(ws)})
+        return TrainingData({"history": hist, "future": fut}, stats, {"windows": len(ws)}, window_weights(ws))
 
     def build(self, data: TrainingData) -> nn.Module:
         m = self.cfg.get("model", {})

@@ -16,7 +16,7 @@ from torch.nn import functional as F
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.sources import FPS
-from ..data.windows import Window, windows
+from ..data.windows import Window, window_weights, windows
 from ..models.kp_gru import KPGRU, KPGRUStep
 from ..models.kp_refine import RefineGCN
 from ..ops import keyposes as kp
@@ -159,7 +159,7 @@ class KeyposesMethod(Method):
         data = self.sequences(clips, "train")
         self.notes.update(data.notes)
         self.examples = len(data)
-        return TrainingData(data.tensors, {}, self.notes)
+        return TrainingData(data.tensors, {}, self.notes, data.weights)
 
     def travel_table(self, clips: list[Clip]) -> np.ndarray:
         """The root channel's velocity per cluster (export/ops/keypose_travel.py) from every train range."""
@@ -176,19 +176,21 @@ class KeyposesMethod(Method):
         """Observed and future keypose sequences (and refinement pairs) of every window of `part`;
         windows whose history yields fewer than min_observed keyposes are left out, as the
         predictors reject them."""
-        rows, observed_counts, future_counts = [], [], []
+        rows, kept, observed_counts, future_counts = [], [], [], []
         for w in self._windows(clips, part):
             row = self._sequence(w)
             observed_counts.append(row.pop("observed_count"))
             future_counts.append(row.pop("future_count"))
             if observed_counts[-1] >= self.min_observed:
                 rows.append(row)
+                kept.append(w)
         if not rows:
             raise ValueError(f"no {part} window yields {self.min_observed} keyposes")
         tensors = {k: torch.from_numpy(np.stack([r[k] for r in rows])) for k in rows[0]}
         return TrainingData(tensors, {}, {"windows": len(rows), "skipped_few_keyposes": len(observed_counts) - len(rows),
                                           "observed_histogram": np.bincount(observed_counts).tolist(),
-                                          "future_histogram": np.bincount(future_counts).tolist()})
+                                          "future_histogram": np.bincount(future_counts).tolist()},
+                            window_weights(kept))
 
     def _windows(self, clips: list[Clip], part: str = "train") -> list[Window]:
         """Windows of history + refine_frames from `part` (loops wrap); where a range ends sooner,

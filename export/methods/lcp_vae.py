@@ -12,7 +12,7 @@ from torch import nn
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.sources import FPS
-from ..data.windows import windows
+from ..data.windows import window_weights, windows
 from ..models.lcp_vae import VARIANTS, ConditionGraph, DecoderGraph, LcpVae
 from ..ops.floor import floor_penalty
 from ..ops.kl import kl_lcp, kl_standard_normal
@@ -51,7 +51,8 @@ class LcpVaeMethod(Method):
         motion = torch.from_numpy(np.stack([w.positions for w in ws])).float()   # [W, N+T, J, 3]
         flat = motion.reshape(-1, J * 3)
         stats = {"pose_mean": flat.mean(0), "pose_std": flat.std(0).clamp_min(1e-2)}
-        return TrainingData({"history": motion[:, :n], "future": motion[:, n:]}, stats, {"windows": len(ws)})
+        return TrainingData({"history": motion[:, :n], "future": motion[:, n:]}, stats, {"windows": len(ws)},
+                            window_weights(ws))
 
     def build(self, data: TrainingData) -> nn.Module:
         m = self.cfg.get("model", {})

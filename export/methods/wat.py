@@ -12,6 +12,7 @@ import torch
 from scipy.stats import wasserstein_distance
 from torch import nn
 
+from ..data.balance import example_weights
 from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.windows import windows
@@ -107,7 +108,11 @@ class WatMethod(Method):
                  "k": self.k, "t0_uncapped": _summary(u), "t0_capped": _summary(b.pair_t0[~b.pair_same]),
                  "flag_threshold": self.flag_threshold}
         self.pairs, self.pair_same = tensors, b.pair_same
-        return TrainingData(tensors, stats, notes)
+        # Each pair is drawn for its instance's action and person, capped by data/balance.py.
+        self.pair_people = b.instance_person[b.pair_instance].tolist()
+        self.pair_weights = example_weights([self.actions[a] for a in b.instance_action[b.pair_instance]],
+                                            self.pair_people)
+        return TrainingData(tensors, stats, notes, self.pair_weights)
 
     def build(self, data: TrainingData) -> nn.Module:
         m = self.cfg.get("model", {})
@@ -209,7 +214,9 @@ class WatMethod(Method):
             raise RuntimeError("the stop threshold needs the training pairs: call prepare() first")
         rng = np.random.default_rng(seed)
         n_pairs = len(self.pairs["history"])
-        pick = torch.from_numpy(rng.choice(n_pairs, size=min(count, n_pairs), replace=False))
+        # drawn as training draws them (data/balance.py), so the lengths are those the model learnt
+        pick = torch.from_numpy(rng.choice(n_pairs, size=min(count, n_pairs), replace=False,
+                                           p=self.pair_weights / self.pair_weights.sum()))
         gen = torch.Generator().manual_seed(seed)
         q, t_max = int(self.stop["q"]), self.future_frames
         curves, lengths, t0s = [], [], []

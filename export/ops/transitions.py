@@ -87,6 +87,7 @@ class Bank:
     pair_instance: np.ndarray        # [P]
     pair_t0: np.ndarray              # [P] transition frames (0 for same pairs)
     pair_same: np.ndarray            # [P] bool
+    instance_person: np.ndarray = field(default_factory=lambda: np.zeros(0))  # [I] the instance clip's person
     uncapped_t0: np.ndarray = field(default_factory=lambda: np.zeros(0))  # cross pairs, before the cap
 
 
@@ -149,14 +150,15 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
     switching to another, while every action is still paired with every other across the bank."""
     rng = np.random.default_rng(seed)
     train = [cached_repeats(c) for c in clips if c.split.train]
-    hist, hist_act, inst, inst_len, inst_act = [], [], [], [], []
+    hist, hist_act, inst, inst_len, inst_act, inst_person = [], [], [], [], [], []
 
-    def add_instance(frames: np.ndarray, action: int) -> int:
+    def add_instance(frames: np.ndarray, action: int, person) -> int:
         stored = np.repeat(frames[-1:], store, axis=0)
         stored[:min(store, len(frames))] = frames[:store]
         inst.append(stored.astype(np.float32))
         inst_len.append(len(frames))
         inst_act.append(action)
+        inst_person.append(str(person))
         return len(inst) - 1
 
     pair_h, pair_i, pair_t0, pair_same = [], [], [], []
@@ -165,7 +167,7 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
         for h, future in continuations(clip, n, min_future, mirror):
             hist.append(h.astype(np.float32))
             hist_act.append(a)
-            i = add_instance(future, a)
+            i = add_instance(future, a, clip.subject)
             for _ in range(same_copies):
                 pair_h.append(len(hist) - 1), pair_i.append(i), pair_t0.append(0), pair_same.append(True)
 
@@ -175,7 +177,8 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
         by_action: dict[int, list[tuple[Clip, dict, dict]]] = {}
         for clip in train:
             a = actions.index(clip.action)
-            ids = {key: add_instance(frames, a) for key, frames in instance_starts(clip, start_search, mirror)}
+            ids = {key: add_instance(frames, a, clip.subject)
+                   for key, frames in instance_starts(clip, start_search, mirror)}
             first = {i: inst[i][0].reshape(-1).astype(np.float64) for i in ids.values()}
             by_action.setdefault(a, []).append((clip, ids, first))
         for hi in range(len(hist)):
@@ -201,4 +204,4 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
 
     return Bank(np.stack(hist), np.asarray(hist_act), np.stack(inst), np.asarray(inst_len), np.asarray(inst_act),
                 np.asarray(pair_h), np.asarray(pair_i), np.asarray(pair_t0), np.asarray(pair_same),
-                np.asarray(uncapped))
+                np.asarray(inst_person), np.asarray(uncapped))

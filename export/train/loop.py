@@ -56,9 +56,15 @@ def world() -> tuple[int, int]:
     return (dist.get_rank(), dist.get_world_size()) if size > 1 else (0, 1)
 
 
-def batch_indices(n: int, batch_size: int, steps: int, seed: int) -> np.ndarray:
-    """[steps, batch_size] example indices: seeded epochs of permutations, concatenated."""
+def batch_indices(n: int, batch_size: int, steps: int, seed: int, weights: np.ndarray | None = None) -> np.ndarray:
+    """[steps, batch_size] example indices: seeded epochs of permutations, concatenated; with `weights`,
+    seeded draws with replacement in proportion to them (the balance rule, data/balance.py)."""
     rng = np.random.default_rng(seed)
+    if weights is not None:
+        p = np.asarray(weights, dtype=np.float64)
+        if p.shape != (n,) or (p < 0).any() or not p.sum() > 0:
+            raise ValueError(f"sampling weights must be {n} non-negative numbers with a positive sum")
+        return rng.choice(n, size=(steps, batch_size), replace=True, p=p / p.sum())
     needed = steps * batch_size
     order = [rng.permutation(n) for _ in range(-(-needed // n))]
     return np.concatenate(order or [np.zeros(0, dtype=int)])[:needed].reshape(steps, batch_size)
@@ -76,7 +82,7 @@ def fit(method: Method, model: nn.Module, data: TrainingData, tc: TrainConfig,
     net = nn.parallel.DistributedDataParallel(model) if size > 1 else model
     optim = torch.optim.Adam(model.parameters(), lr=tc.lr)
     sched = torch.optim.lr_scheduler.CosineAnnealingLR(optim, T_max=max(1, tc.steps), eta_min=tc.lr * 0.05)
-    plan = batch_indices(len(data), tc.batch_size, tc.steps, tc.seed)
+    plan = batch_indices(len(data), tc.batch_size, tc.steps, tc.seed, data.weights)
     shard = tc.batch_size // size
     start = 0
     ckpt = run_dir / "checkpoint.pt" if run_dir else None

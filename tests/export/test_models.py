@@ -83,3 +83,39 @@ def test_model_hash_covers_the_method_import_closure_only():
     # Evaluation, other methods and the CLI do not change what the baselines compute.
     assert not any(f.startswith("eval/") for f in files)
     assert not {"methods/wat.py", "models/wat.py", "cli.py", "methods/__init__.py"} & files
+
+
+def test_the_model_hash_reads_what_the_code_runs_not_its_comments_or_layout():
+    from export.config import normalised_code
+    code = '''"""Module docstring."""
+import math
+
+
+def f(x):
+    """What f does."""
+    # a comment
+    return math.sqrt(x) + 1
+'''
+    reformatted = '''import math
+def f( x ):   # another comment
+    return (math.sqrt(x)
+            + 1)
+'''
+    assert normalised_code(code) == normalised_code(reformatted)
+    # a change to a function body, a constant or a name is a change to what runs
+    for changed in (code.replace("+ 1", "+ 2"), code.replace("math.sqrt", "math.exp"),
+                    code.replace("def f(x)", "def f(y)").replace("sqrt(x)", "sqrt(y)")):
+        assert normalised_code(changed) != normalised_code(code)
+    # a docstring-only function keeps a body, so removing the docstring cannot make it invalid
+    assert "Pass" in normalised_code('def g():\n    """only a docstring."""\n')
+
+
+def test_reformatting_every_file_of_export_leaves_every_code_hash_as_it_is():
+    """ast.unparse drops every comment and rewrites every line's layout: a formatter can do no more."""
+    import ast
+    from export.config import EXPORT_DIR, normalised_code
+    files = sorted(EXPORT_DIR.rglob("*.py"))
+    assert len(files) > 50
+    for path in files:
+        text = path.read_text()
+        assert normalised_code(ast.unparse(ast.parse(text))) == normalised_code(text), path
