@@ -1,5 +1,5 @@
 """The ASF/AMC reader: forward kinematics by hand, errors that name the problem, and the CMU data itself
-(the same take read as ASF/AMC and as cgspeed BVH; every take's leg length)."""
+(the same take read as ASF/AMC and as cgspeed BVH; every skeleton's leg; one take of each ASF/AMC source)."""
 import json
 import re
 from pathlib import Path
@@ -155,35 +155,46 @@ def test_asf_amc_and_cgspeed_bvh_of_take_05_02_agree_in_legs_and_root():
     assert worst < 1e-3, worst     # measured: 5e-6 m
 
 
-def leg_length(names, points, hip, knee, ankle):
-    p = {n: points[:, names.index(n)] for n in (hip, knee, ankle)}
-    return np.linalg.norm(p[hip] - p[knee], axis=-1) + np.linalg.norm(p[knee] - p[ankle], axis=-1)
-
-
-def checks_legs():
+def checks_skeletons():
+    """CHECKS.txt's list of ASF skeletons: path -> (femur, tibia, leg) of the left leg in metres."""
     rows = {}
     for line in (CMU / "CHECKS.txt").read_text().splitlines():
-        m = re.match(r"(\d+_\d+)\s+(amc|bvh-cgs|bvh-daz)\s+\d+\s+\d+\s+[\d.]+\s+([\d.]+)\s", line)
+        m = re.match(r"\s+data/(\S+\.asf)\s+femur ([\d.]+) tibia ([\d.]+) leg ([\d.]+)$", line)
         if m:
-            rows[m[1]] = float(m[3])
+            rows[m[1]] = tuple(float(m[i]) for i in (2, 3, 4))
     return rows
 
 
-def test_every_asf_amc_and_cgspeed_take_has_a_human_leg_length_in_metres():
-    want = checks_legs()
-    measured = {}
-    for e in index():
-        if e["format"].startswith("ASF/AMC"):
-            names, p = read_asf_amc(CMU / e["asf"], CMU / e["file"])
-            legs = [leg_length(names, p, f"{s}hipjoint", f"{s}femur", f"{s}tibia") for s in "lr"]
-        elif e["format"].startswith("BVH (cgspeed"):
-            bvh = read_bvh(CMU / e["file"])
-            names, p = bvh.names, bvh_positions(bvh)[1:] * UNIT
-            legs = [leg_length(names, p, f"{s}UpLeg", f"{s}Leg", f"{s}Foot") for s in ("Left", "Right")]
-        else:
-            continue  # Daz-style: one fixed skeleton for everybody, says nothing about the person
-        measured[e["take"]] = float(np.mean(legs))
-    assert len(measured) == 41 + 14
-    for take, leg in measured.items():
-        assert 0.78 <= leg <= 0.90, (take, leg)
-        assert abs(leg - want[take]) < 1e-3, (take, leg, want[take])
+def test_every_asf_skeleton_has_the_leg_checks_measured():
+    want = checks_skeletons()
+    used = {e["asf"].removeprefix("data/") for e in index() if e["asf"]}
+    assert len(want) == 12 and set(want) == used
+    for path, (femur, tibia, leg) in want.items():
+        asf = read_asf(CMU / "data" / path)
+        bone = {b.name: b.length * asf.metres for b in asf.bones}
+        assert (round(bone["lfemur"], 3), round(bone["ltibia"], 3)) == (femur, tibia), path
+        assert 0.74 <= bone["lfemur"] + bone["ltibia"] <= 0.90, path
+
+
+@pytest.mark.parametrize("take, asf, frames", [
+    ("35_01", "SheffieldML+vargplvm/vargplvm/matlab/35.asf", 358),            # SheffieldML's own AMC
+    ("35_18", "SheffieldML+vargplvm/vargplvm/matlab/35.asf", 175),            # sxaxmz's AMC on that skeleton
+    ("105_02", "sxaxmz+CMU-Dataset-Partially-Labelled/105/105.asf", 1748),    # subject 105 (sxaxmz @ d602543)
+    ("01_01", "cyun9601+CMU-MOCAP-Data/data/CMU/asfamc/subjects/01/01.asf", 2751),
+])
+def test_each_asf_amc_source_reads_with_its_own_skeleton(take, asf, frames):
+    entry = next(e for e in index() if e["take"] == take)
+    assert entry["asf"] == f"data/{asf}"
+    skeleton = read_asf(CMU / entry["asf"])
+    amc = read_amc(CMU / entry["file"], skeleton)
+    assert len(amc) == entry["frames"] == frames and amc.frames[0] == 1
+    # every frame gives exactly the skeleton's dofs (the fast reader took it: no gaps, no extra bones)
+    assert set(amc.values) == {"root"} | {b.name for b in skeleton.bones if b.dof}
+    p = joint_positions(skeleton, amc)
+    names = skeleton.names
+    leg = np.mean([np.median(np.linalg.norm(p[:, names.index(f"{s}hipjoint")] - p[:, names.index(f"{s}femur")], axis=-1)
+                             + np.linalg.norm(p[:, names.index(f"{s}femur")] - p[:, names.index(f"{s}tibia")], axis=-1))
+                   for s in "lr"])
+    assert 0.74 <= leg <= 0.90
+    # metres, y up: the root stands about a leg above the floor
+    assert 0.6 * leg < np.median(p[:, 0, 1]) - np.percentile(p[:, names.index("ltibia"), 1], 5) < 1.3 * leg
