@@ -1,16 +1,20 @@
 """Motion sources: each turns some files into clips on the project skeleton at the project rate.
 
-One small base class and one subclass per source (DeepMimic, BVH folders, npz folders), so
-`python -m export ... --data PATH` trains on any of them.
+One small base class and one subclass per source (DeepMimic; user folders of BVH, ASF/AMC or npz
+files, or of several kinds at once), so `python -m export ... --data PATH` trains on any of them.
 """
 from __future__ import annotations
 
 import hashlib
 import json
 import re
+import sys
 from pathlib import Path
 
+import numpy as np
+
 from . import deepmimic, split
+from .asf_amc import Asf, joint_positions as asf_positions, read_amc, read_asf
 from .bvh import joint_positions, read_bvh
 from .clip import Clip, Split
 from .npz import load_npz
@@ -87,31 +91,111 @@ class DeepMimicSource(MotionSource):
         return clip
 
 
+# The kinds of motion file a folder may hold: suffix -> (built-in joint map, dataset label).
+KINDS = {
+    ".bvh": ("cmu-bvh", "BVH motion capture"),
+    ".amc": ("cmu-asf", "ASF/AMC motion capture"),
+    ".npz": ("smpl", "joint positions (npz)"),
+}
+AMC_FPS = 120.0             # CMU's capture rate; a sidecar <take>.json {"fps": ...} says otherwise
+CONFIG_FILES = ("labels.json", "joint-map.json")
+READABLE = "DeepMimic humanoid3d_*.txt, *.bvh, *.amc with its *.asf skeleton, *.npz"
+
+
 class FolderSource(MotionSource):
     """A user's folder of motion files, retargeted onto the project skeleton (data/retarget.py).
+    This class reads every kind of KINDS; the subclasses below read one kind each.
 
+    Files: `*.bvh` (frame rate from the header), `*.npz` (data/npz.py) and `*.amc` motions with an
+    `*.asf` skeleton: the AMC's skeleton is `<subject>.asf` (the name's part before the first "_",
+    as CMU names them: `05.asf` for `05_02.amc`) beside it or in a folder above it, else the only
+    `.asf` in the nearest folder that holds any; otherwise the AMC is skipped. An AMC plays at
+    120 fps (CMU's rate) unless a sidecar `<take>.json` says {"fps": ...}. Suffixes match in any case.
     Labels: `labels.json` in the folder maps a file (its path relative to the folder, with or
     without the suffix) to an action, or to {"action": ..., "test_only": true}; otherwise a
     file's action is the name of the first sub-folder it sits in (`walk/take1.bvh` -> walk).
-    `joint-map.json` in the folder, if present, overrides the built-in joint map.
+    `joint-map.json` in the folder, if present, overrides the built-in joint map of every kind.
+    Every other file is skipped and named with the reason (`skipped`, printed when clips load);
+    a file of a kind read here that cannot be read is an error, named.
     """
 
-    suffix = ""
-    default_map = ""
-    dataset = ""
+    name = "folder"
+    kinds: tuple[str, ...] = tuple(KINDS)
 
     def __init__(self, root: str | Path, joint_map: Path | dict | None = None):
         self.root = Path(root)
         if joint_map is None and (self.root / "joint-map.json").exists():
             joint_map = self.root / "joint-map.json"
-        self.joint_map: JointMap = load_map(self.default_map, joint_map)
+        self.maps: dict[str, JointMap] = {k: load_map(KINDS[k][0], joint_map) for k in self.kinds}
+        self._skeletons: dict[Path, Asf] = {}
+
+    @property
+    def joint_map(self) -> JointMap:
+        """The joint map of the first kind read (the only one, for a one-kind source)."""
+        return self.maps[self.kinds[0]]
+
+    def _scan(self) -> tuple[list[Path], list[Path], list[tuple[Path, str]]]:
+        """(motion files read, other files they need: skeletons and sidecars, skipped files with why)."""
+        read, needed, skipped, skeletons = [], [], [], []
+        for path in sorted(p for p in self.root.rglob("*") if p.is_file()):
+            suffix = path.suffix.lower()
+            if path.parent == self.root and path.name in CONFIG_FILES:
+                continue
+            if suffix in self.kinds:
+                if suffix == ".amc":
+                    asf, why = self.skeleton_of(path)
+                    if asf is None:
+                        skipped.append((path, why))
+                        continue
+                    needed.append(asf)
+                read.append(path)
+            elif suffix == ".asf" and ".amc" in self.kinds:
+                skeletons.append(path)
+            elif suffix == ".json" and self._sidecar(path):
+                needed.append(path)
+            elif suffix in KINDS or suffix == ".asf":
+                skipped.append((path, f"a {suffix} file: this source reads {', '.join(self.kinds)} only"))
+            else:
+                skipped.append((path, f"not a motion file this version reads ({READABLE})"))
+        used = set(needed)
+        skipped += [(p, "a skeleton that no .amc file here uses") for p in skeletons if p not in used]
+        return read, sorted(used), sorted(skipped)
+
+    def _sidecar(self, path: Path) -> bool:
+        """Whether a .json is the sidecar of an .amc or .npz this source reads (same name, beside it)."""
+        kinds = {".amc", ".npz"} & set(self.kinds)
+        return any(p.stem == path.stem and p.suffix.lower() in kinds and p.is_file() for p in path.parent.iterdir())
 
     def files(self) -> list[Path]:
-        return sorted(p for p in self.root.rglob(f"*{self.suffix}") if p.is_file())
+        return self._scan()[0]
+
+    @property
+    def skipped(self) -> list[tuple[Path, str]]:
+        """The files in the folder this source does not read, each with the reason."""
+        return self._scan()[2]
 
     def data_files(self) -> list[Path]:
-        extra = [self.root / n for n in ("labels.json", "joint-map.json") if (self.root / n).exists()]
-        return self.files() + extra
+        read, needed, _ = self._scan()
+        extra = [self.root / n for n in CONFIG_FILES if (self.root / n).exists()]
+        return read + needed + extra
+
+    def skeleton_of(self, amc: Path) -> tuple[Path | None, str]:
+        """The .asf an .amc moves (see the class docstring), or None and why there is none."""
+        subject = amc.stem.split("_", 1)[0].strip().lower() if "_" in amc.stem else None
+        folders = [amc.parent, *[p for p in amc.parent.parents if p == self.root or self.root in p.parents]]
+        found = [(d, sorted(p for p in d.iterdir() if p.is_file() and p.suffix.lower() == ".asf")) for d in folders]
+        for _, asfs in found:
+            match = [p for p in asfs if p.stem.lower() == subject]
+            if match:
+                return match[0], ""
+        nearest = next((asfs for _, asfs in found if asfs), [])
+        if len(nearest) == 1:
+            return nearest[0], ""
+        want = f"no {subject}.asf beside it or in a folder above" if subject else "no <subject>.asf for it"
+        if not nearest:
+            return None, f"no skeleton: {want}, and no .asf file there at all"
+        return None, (f"no skeleton: {want}, and {len(nearest)} .asf files to choose from "
+                      f"({', '.join(p.name for p in nearest[:4])}{' ...' if len(nearest) > 4 else ''})")
 
     def _labels(self) -> dict[str, dict]:
         path = self.root / "labels.json"
@@ -129,7 +213,8 @@ class FolderSource(MotionSource):
             if not isinstance(entry, dict) or not isinstance(entry.get("action"), str) or not entry["action"] \
                     or set(entry) - {"action", "test_only"}:
                 raise ValueError(f"{path}: field {key}: an action name or {{\"action\": ..., \"test_only\": true}}")
-            out[key.removesuffix(self.suffix)] = entry
+            suffix = Path(key).suffix.lower()
+            out[key[:-len(suffix)] if suffix in KINDS else key] = entry
         return out
 
     def _label(self, rel: Path, labels: dict[str, dict]) -> tuple[str, bool]:
@@ -143,66 +228,103 @@ class FolderSource(MotionSource):
                          f"(walk/{rel.name}) or list it in {self.root / 'labels.json'}")
 
     def _load(self) -> list[tuple[Clip, bool]]:
-        files = self.files()
+        files, _, skipped = self._scan()
+        for path, why in skipped:
+            print(f"{self.root.name}: skipped {path.relative_to(self.root).as_posix()}: {why}", file=sys.stderr)
         if not files:
-            raise FileNotFoundError(f"{self.root}: no {self.suffix} files")
+            shown = "; ".join(f"{p.relative_to(self.root).as_posix()}: {why}" for p, why in skipped[:5])
+            raise FileNotFoundError(f"{self.root}: no {' or '.join(self.kinds)} files it can read"
+                                    + (f" (skipped {shown})" if shown else ""))
         labels = self._labels()
         out = []
         for path in files:
             rel = path.relative_to(self.root)
             action, test_only = self._label(rel, labels)
+            kind = path.suffix.lower()
             positions = self._positions(path)
             out.append((Clip(name=clip_name(rel), action=action, fps=FPS, positions=positions, loops=False,
                              split=Split("train", [], []),
-                             source={"dataset": f"{self.dataset} ({self.root.name})", "file": rel.as_posix(),
-                                     "license": "as given by the user", "joint_map": self.joint_map.name}),
+                             source={"dataset": f"{KINDS[kind][1]} ({self.root.name})", "file": rel.as_posix(),
+                                     "license": "as given by the user", "joint_map": self.maps[kind].name}),
                         test_only))
         return out
 
-    def _positions(self, path: Path):
-        raise NotImplementedError
+    def _positions(self, path: Path) -> np.ndarray:
+        """Project positions [F, 18, 3] at 30 Hz of one motion file."""
+        kind = path.suffix.lower()
+        jmap = self.maps[kind]
+        if kind == ".bvh":
+            bvh = read_bvh(path)
+            return retarget(joint_positions(bvh), bvh.names, bvh.frame_time, jmap, str(path))
+        if kind == ".amc":
+            return self._amc_positions(path, jmap)
+        return _npz_positions(path, jmap)
+
+    def _amc_positions(self, path: Path, jmap: JointMap) -> np.ndarray:
+        asf_path, why = self.skeleton_of(path)
+        if asf_path is None:
+            raise ValueError(f"{path}: {why}")
+        if asf_path not in self._skeletons:
+            self._skeletons[asf_path] = read_asf(asf_path)
+        asf = self._skeletons[asf_path]
+        points = asf_positions(asf, read_amc(path, asf))
+        return retarget(points, asf.names, 1.0 / amc_fps(path), jmap, str(path))
+
+
+def amc_fps(path: Path) -> float:
+    """An AMC's frame rate: its sidecar <take>.json's "fps", else CMU's 120."""
+    side = path.with_suffix(".json")
+    if not side.exists():
+        return AMC_FPS
+    try:
+        doc = json.loads(side.read_text())
+    except (OSError, json.JSONDecodeError) as e:
+        raise ValueError(f"{side}: not readable JSON ({e})") from e
+    fps = doc.get("fps") if isinstance(doc, dict) and set(doc) == {"fps"} else None
+    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not (np.isfinite(fps) and fps > 0):
+        raise ValueError(f"{side}: the sidecar of an .amc is {{\"fps\": <frames per second>}}, e.g. {{\"fps\": 60}}")
+    return float(fps)
+
+
+def _npz_positions(path: Path, jmap: JointMap) -> np.ndarray:
+    motion = load_npz(path)
+    names = motion.names or jmap.orders.get(str(motion.points.shape[1]))
+    how = (f"add 'joint_names' to the npz or a sidecar {path.with_suffix('.json').name} with \"names\" "
+           "(the joints in the file's order)")
+    if names is None:
+        raise ValueError(f"{path}: {motion.points.shape[1]} joints is not a joint order the {jmap.name} map knows "
+                         f"({', '.join(sorted(jmap.orders, key=int))}); {how}")
+    if motion.up and motion.up != jmap.up:
+        jmap = JointMap(jmap.name, motion.up, jmap.joints, jmap.orders)
+    if motion.names is None:
+        # The order was assumed from the joint count: refuse rather than build a folded body.
+        problems = implausible(motion.points, names, jmap, str(path))
+        if problems:
+            raise ValueError(f"{path}: no joint names, and the assumed {jmap.name} order for "
+                             f"{motion.points.shape[1]} joints fails a plausibility check: {'; '.join(problems)}. "
+                             f"Name the joints: {how}")
+    return retarget(motion.points, names, 1.0 / motion.fps, jmap, str(path))
 
 
 class BvhFolderSource(FolderSource):
-    """*.bvh files (CMU-style skeletons by default)."""
+    """*.bvh files only (CMU-style skeletons by default)."""
 
     name = "bvh"
-    suffix = ".bvh"
-    default_map = "cmu-bvh"
-    dataset = "BVH motion capture"
-
-    def _positions(self, path: Path):
-        bvh = read_bvh(path)
-        return retarget(joint_positions(bvh), bvh.names, bvh.frame_time, self.joint_map, str(path))
+    kinds = (".bvh",)
 
 
 class NpzFolderSource(FolderSource):
-    """*.npz files of joint positions (SMPL joint orders by default; see data/npz.py)."""
+    """*.npz files of joint positions only (SMPL joint orders by default; see data/npz.py)."""
 
     name = "npz"
-    suffix = ".npz"
-    default_map = "smpl"
-    dataset = "joint positions (npz)"
+    kinds = (".npz",)
 
-    def _positions(self, path: Path):
-        motion = load_npz(path)
-        jmap = self.joint_map
-        names = motion.names or jmap.orders.get(str(motion.points.shape[1]))
-        how = (f"add 'joint_names' to the npz or a sidecar {path.with_suffix('.json').name} with \"names\" "
-               "(the joints in the file's order)")
-        if names is None:
-            raise ValueError(f"{path}: {motion.points.shape[1]} joints is not a joint order the {jmap.name} map knows "
-                             f"({', '.join(sorted(jmap.orders, key=int))}); {how}")
-        if motion.up and motion.up != jmap.up:
-            jmap = JointMap(jmap.name, motion.up, jmap.joints, jmap.orders)
-        if motion.names is None:
-            # The order was assumed from the joint count: refuse rather than build a folded body.
-            problems = implausible(motion.points, names, jmap, str(path))
-            if problems:
-                raise ValueError(f"{path}: no joint names, and the assumed {jmap.name} order for "
-                                 f"{motion.points.shape[1]} joints fails a plausibility check: {'; '.join(problems)}. "
-                                 f"Name the joints: {how}")
-        return retarget(motion.points, names, 1.0 / motion.fps, jmap, str(path))
+
+class AsfAmcFolderSource(FolderSource):
+    """*.amc motions with their *.asf skeletons only (CMU's own form)."""
+
+    name = "asf-amc"
+    kinds = (".amc",)
 
 
 def clip_name(rel: Path) -> str:
@@ -218,8 +340,12 @@ def default_source() -> MotionSource:
     return DefaultSource()
 
 
+ONE_KIND = {".bvh": BvhFolderSource, ".amc": AsfAmcFolderSource, ".npz": NpzFolderSource}
+
+
 def source_for(path: str | Path, joint_map: Path | None = None) -> MotionSource:
-    """The source for a user's folder: DeepMimic humanoid3d_*.txt, *.bvh or *.npz files."""
+    """The source for a user's folder: DeepMimic humanoid3d_*.txt, else its *.bvh, *.amc (+ *.asf) and
+    *.npz files: a one-kind source when it holds one kind (named after it), else one that reads them all."""
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such folder")
@@ -227,15 +353,12 @@ def source_for(path: str | Path, joint_map: Path | None = None) -> MotionSource:
         raise ValueError(f"{path}: --data takes a folder (put the file in a sub-folder named after its action)")
     if any(path.glob("humanoid3d_*.txt")):
         return DeepMimicSource(path)
-    has_bvh = any(p.is_file() for p in path.rglob("*.bvh"))
-    has_npz = any(p.is_file() for p in path.rglob("*.npz"))
-    if has_bvh and has_npz:
-        raise ValueError(f"{path}: holds both .bvh and .npz files; give one kind per folder")
-    if has_bvh:
-        return BvhFolderSource(path, joint_map)
-    if has_npz:
-        return NpzFolderSource(path, joint_map)
-    raise ValueError(f"{path}: no motion files this version can read (DeepMimic humanoid3d_*.txt, *.bvh, *.npz)")
+    kinds = {p.suffix.lower() for p in path.rglob("*") if p.is_file() and p.suffix.lower() in KINDS}
+    if not kinds:
+        raise ValueError(f"{path}: no motion files this version can read ({READABLE})")
+    if len(kinds) == 1:
+        return ONE_KIND[kinds.pop()](path, joint_map)
+    return FolderSource(path, joint_map)
 
 
 def source_hash(source: MotionSource) -> str:
