@@ -89,18 +89,10 @@ class WatMethod(Method):
         self.flag_threshold, _ = smoothness_flag_threshold(clips, self.smooth["l"], self.smooth["m"],
                                                            self.smooth["flag_percentile"])
         hist = self.bank["history"]
-        same = b.pair_instance[b.pair_same]
-        offsets, steps = [], []
-        for h, i in zip(b.pair_history[b.pair_same], same):
-            length = min(int(b.instance_length[i]), t_max)
-            continued = np.concatenate([b.histories[h, -1:], b.instances[i, :length]])
-            offsets.append(continued[1:] - continued[:1])
-            steps.append(np.diff(continued, axis=0))
-        offsets = torch.from_numpy(np.concatenate(offsets)).reshape(-1, J * 3)
-        steps = torch.from_numpy(np.concatenate(steps)).reshape(-1, J * 3)
+        offset_std, step_std = continuation_scales(b, t_max)
         # Output scales of the decoder: offsets from x_N, or frame-to-frame steps (model.residual).
         stats = {"pose_mean": hist.reshape(-1, J * 3).mean(0), "pose_std": hist.reshape(-1, J * 3).std(0).clamp_min(1e-3),
-                 "offset_std": offsets.std(0).clamp_min(1e-3), "step_std": steps.std(0).clamp_min(1e-4)}
+                 "offset_std": offset_std.clamp_min(1e-3), "step_std": step_std.clamp_min(1e-4)}
         tensors = {"history": torch.from_numpy(b.pair_history).long(), "instance": torch.from_numpy(b.pair_instance).long(),
                    "t0": torch.from_numpy(b.pair_t0).long()}
         u = b.uncapped_t0
@@ -254,6 +246,27 @@ class WatMethod(Method):
             self.calibration = {"delta": round(float(deltas[best]), 6), "mae": float(mae[best]),
                                 "wasserstein": float(w1[best]), "lengths": pred[best], **s}
         return self.calibration
+
+
+def continuation_scales(b, t_max: int, chunk: int = 2048) -> tuple[torch.Tensor, torch.Tensor]:
+    """Per-coordinate std of the same pairs' offsets from x_N and of their frame-to-frame steps, over the
+    frames each continuation has (at most t_max): streamed sums over the distinct pairs, since holding
+    every offset of the v2 data at once took 17 GB. Each same pair is repeated `same_copies` times in
+    the bank, which does not change a std."""
+    pairs = np.unique(np.stack([b.pair_history[b.pair_same], b.pair_instance[b.pair_same]], 1), axis=0)
+    sums = np.zeros((2, 3, J * 3))                  # [offsets, steps] x [count, sum, sum of squares]
+    for start in range(0, len(pairs), chunk):
+        h, i = pairs[start:start + chunk].T
+        cont = np.concatenate([b.histories[h, -1:], b.instances[i, :t_max]], 1).astype(np.float64)
+        cont = cont.reshape(len(h), t_max + 1, J * 3)
+        valid = (np.arange(t_max)[None] < np.minimum(b.instance_length[i], t_max)[:, None])[..., None]
+        for k, x in enumerate((cont[:, 1:] - cont[:, :1], np.diff(cont, axis=1))):
+            sums[k] += [np.broadcast_to(valid, x.shape).sum((0, 1)), (x * valid).sum((0, 1)),
+                        (x * x * valid).sum((0, 1))]
+    n, total, squares = sums[:, 0], sums[:, 1], sums[:, 2]
+    var = (squares - total ** 2 / n) / np.maximum(n - 1, 1)
+    std = torch.from_numpy(np.sqrt(np.maximum(var, 0.0))).float()
+    return std[0], std[1]
 
 
 def _summary(x: np.ndarray) -> dict:

@@ -98,20 +98,25 @@ def _mirror_variants(seq: np.ndarray, at: int, mirror: bool) -> list[np.ndarray]
     return out
 
 
-def continuations(clip: Clip, n: int, min_future: int, mirror: bool) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Same pairs of one clip: (history [n, J, 3], its own continuation [T, J, 3]) in the history's frame.
+def continuations(clip: Clip, n: int, min_future: int, mirror: bool, store: int | None = None
+                  ) -> list[tuple[np.ndarray, np.ndarray, int]]:
+    """Same pairs of one clip: (history [n, J, 3], its own continuation [T, J, 3], T) in the history's frame.
 
     A repeatable loop continues for one cycle after every phase; any other clip continues to the end
-    of its training part (histories leaving fewer than `min_future` frames are skipped).
+    of its training part (histories leaving fewer than `min_future` frames are skipped). With `store`,
+    only the continuation's first `store` frames are kept (and turned), its full length T still given:
+    a 30 s take would otherwise hold every start's whole remainder, quadratic in the take's length.
     """
     period = loop_period(clip)
     if period:
-        return [(w.positions[:n], w.positions[n:]) for w in windows([clip], "train", n + period, n, mirror=mirror)]
+        return [(w.positions[:n], w.positions[n:n + store] if store else w.positions[n:], period)
+                for w in windows([clip], "train", n + period, n, mirror=mirror)]
     out = []
     for a, b in clip.split.train:
         for s in range(a + n, b - min_future + 1):
-            for seq in _mirror_variants(clip.positions[s - n:b], n - 1, mirror):
-                out.append((seq[:n], seq[n:]))
+            end = b if store is None else min(b, s + store)
+            for seq in _mirror_variants(clip.positions[s - n:end], n - 1, mirror):
+                out.append((seq[:n], seq[n:], b - s))
     return out
 
 
@@ -152,11 +157,11 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
     train = [cached_repeats(c) for c in clips if c.split.train]
     hist, hist_act, inst, inst_len, inst_act, inst_person = [], [], [], [], [], []
 
-    def add_instance(frames: np.ndarray, action: int, person) -> int:
+    def add_instance(frames: np.ndarray, action: int, person, length: int | None = None) -> int:
         stored = np.repeat(frames[-1:], store, axis=0)
         stored[:min(store, len(frames))] = frames[:store]
         inst.append(stored.astype(np.float32))
-        inst_len.append(len(frames))
+        inst_len.append(len(frames) if length is None else length)
         inst_act.append(action)
         inst_person.append(str(person))
         return len(inst) - 1
@@ -164,10 +169,10 @@ def build_bank(clips: list[Clip], actions: list[str], n: int, store: int, k: flo
     pair_h, pair_i, pair_t0, pair_same = [], [], [], []
     for clip in train:
         a = actions.index(clip.action)
-        for h, future in continuations(clip, n, min_future, mirror):
+        for h, future, length in continuations(clip, n, min_future, mirror, store):
             hist.append(h.astype(np.float32))
             hist_act.append(a)
-            i = add_instance(future, a, clip.subject)
+            i = add_instance(future, a, clip.subject, length)
             for _ in range(same_copies):
                 pair_h.append(len(hist) - 1), pair_i.append(i), pair_t0.append(0), pair_same.append(True)
 

@@ -105,11 +105,7 @@ def test_folder_errors(tmp_path):
         source_for(tmp_path / "nope")
     with pytest.raises(ValueError, match="no motion files this version can read"):
         source_for(tmp_path)
-    (tmp_path / "a").mkdir()
-    (tmp_path / "a" / "x.bvh").write_text("not a bvh")
-    (tmp_path / "a" / "y.npz").write_bytes(b"")
-    with pytest.raises(ValueError, match="holds both .bvh and .npz files"):
-        source_for(tmp_path)
+    # a folder of several kinds is read by one source (tests/export/test_sources_folders.py)
 
 
 def test_clip_names_follow_the_contract():

@@ -116,16 +116,36 @@ def test_pairs_join_a_history_to_another_action_after_a_capped_t0(subset):
     assert bank.uncapped_t0.max() > 20 and bank.pair_t0.max() == 20
 
 
+def test_continuation_scales_stream_the_same_std_as_the_offsets_held_at_once(subset):
+    from export.methods.wat import continuation_scales
+    actions = sorted({c.action for c in subset})
+    bank = build_bank(subset, actions, 10, 40, 11.0, 20, 5, 2, False, True, 10, seed=0)
+    offsets, steps = [], []
+    for h, i in zip(bank.pair_history[bank.pair_same], bank.pair_instance[bank.pair_same]):
+        length = min(int(bank.instance_length[i]), 40)
+        cont = np.concatenate([bank.histories[h, -1:], bank.instances[i, :length]]).reshape(length + 1, -1)
+        offsets.append(cont[1:] - cont[:1])
+        steps.append(np.diff(cont, axis=0))
+    got = continuation_scales(bank, 40, chunk=7)
+    np.testing.assert_allclose(got[0].numpy(), np.concatenate(offsets).std(0, ddof=1), rtol=1e-4)
+    np.testing.assert_allclose(got[1].numpy(), np.concatenate(steps).std(0, ddof=1), rtol=1e-4)
+
+
 def test_a_same_pair_continues_its_history_seamlessly(clips):
     # Non-loop: history and continuation are consecutive frames of the clip, in one frame of reference.
-    h, future = continuations(clips["punch"], 10, 10, mirror=False)[0]
+    h, future, length = continuations(clips["punch"], 10, 10, mirror=False)[0]
     step = np.linalg.norm(future[0] - h[-1], axis=-1).max()
     inner = np.linalg.norm(np.diff(h, axis=0), axis=-1).max()
     assert step < 2 * inner + 1e-6
-    assert len(future) == len(clips["punch"]) - 10
+    assert len(future) == length == len(clips["punch"]) - 10
+    # Stored frames only: the same first frames, the full length kept.
+    h2, short, length2 = continuations(clips["punch"], 10, 10, mirror=False, store=7)[0]
+    np.testing.assert_array_equal(h2, h)
+    np.testing.assert_allclose(short, future[:7], atol=1e-12)
+    assert length2 == length and len(short) == 7
     # Loop: one cycle follows each phase.
     pairs = continuations(clips["walk"], 10, 10, mirror=True)
-    assert len(pairs) == 2 * len(clips["walk"]) and all(len(f) == len(clips["walk"]) for _, f in pairs)
+    assert len(pairs) == 2 * len(clips["walk"]) and all(len(f) == n == len(clips["walk"]) for _, f, n in pairs)
 
 
 # --- Eq. 4 and Eq. 8 ------------------------------------------------------------------------
