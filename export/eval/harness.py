@@ -604,8 +604,8 @@ def build_table(table: dict, clips: list[Clip], actions: list[str], ctx: Context
     pool = heldout_actions(clips) if table.get("actions") == "heldout" else actions
     items = [(i, a) for i, w in enumerate(wins) for a in requested_actions(table, pool, i, w.action)]
     units = S.units([wins[i].clip for i, _ in items], [a for _, a in items], [wins[i].subject for i, _ in items])
-    weights = S.bootstrap_weights(int(units.take.max()) + 1 if len(units) else 1, int(cfg["bootstrap"]["rounds"]),
-                                  int(cfg["bootstrap"]["seed"]))
+    # people are the unit: resample them, then their takes (stats.bootstrap_weights)
+    weights = S.bootstrap_weights(S.take_people(units), int(cfg["bootstrap"]["rounds"]), int(cfg["bootstrap"]["seed"]))
     h = int(table["history_frames"])
     placements = [canonicalise(w.history[-h:], h - 1, SKELETON)[1] for w in wins]
     tab = Table(table, wins, items, units, weights, placements, None)

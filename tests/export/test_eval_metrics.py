@@ -195,20 +195,21 @@ def test_paired_comparison_needs_people_and_takes():
     a, b = np.array([1.0, 1.1, 1.0, 1.2, 0.9, 1.0]), np.array([2.0, 2.1, 2.2, 2.0, 1.9, 2.0])
     w = S.bootstrap_weights(3, 400, seed=0)
     c = S.compare(a, b, u, w, 0.0, 0.0, "less")
-    assert c["status"] == S.INSUFFICIENT and (c["people"], c["takes"]) == (2, 3)   # 3 takes < 5
+    assert c["status"] == S.INSUFFICIENT and (c["people"], c["takes"]) == (2, 3)   # 3 takes < 8
     assert c["difference"] == pytest.approx(np.mean(a) - np.mean(b)) and c["bar"] > 0
-    takes = [f"t{i}" for i in range(6)]
-    u6 = S.units(takes, ["walk"] * 6, [1, 1, 1, 2, 2, 2])
-    w6 = S.bootstrap_weights(6, 400, seed=0)
-    assert S.compare(a, b, u6, w6, 0.0, 0.0, "less")["status"] == HOLDS
-    assert S.compare(a, b, u6, w6, 0.0, 5.0, "less")["status"] == INCONCLUSIVE     # a large seed std
-    one = S.units(takes, ["walk"] * 6, [1] * 6)
-    assert S.compare(a, b, one, w6, 0.0, 0.0, "less")["status"] == S.INSUFFICIENT  # one person
+    a, b = np.append(a, [1.1, 1.0]), np.append(b, [2.1, 2.0])
+    takes = [f"t{i}" for i in range(8)]
+    u8 = S.units(takes, ["walk"] * 8, [1, 1, 1, 2, 2, 2, 3, 3])         # 3 people, 8 takes: the minimum
+    w8 = S.bootstrap_weights(S.take_people(u8), 400, seed=0)
+    assert S.compare(a, b, u8, w8, 0.0, 0.0, "less")["status"] == HOLDS
+    assert S.compare(a, b, u8, w8, 0.0, 5.0, "less")["status"] == INCONCLUSIVE     # a large seed std
+    one = S.units(takes, ["walk"] * 8, [1] * 8)
+    assert S.compare(a, b, one, w8, 0.0, 0.0, "less")["status"] == S.INSUFFICIENT  # one person
     gap = a.copy()
     gap[:3] = np.nan                                                       # compared on the items both have
-    c = S.compare(gap, b, u6, w6, 0.0, 0.0, "less")
-    assert c["items"] == 3 and c["b_paired"] == pytest.approx(b[3:].mean())
-    assert S.compare(np.full(6, np.nan), b, u6, w6, 0, 0, "less")["status"] == MISSING
+    c = S.compare(gap, b, u8, w8, 0.0, 0.0, "less")
+    assert c["items"] == 5 and c["b_paired"] == pytest.approx(b[3:].mean())
+    assert S.compare(np.full(8, np.nan), b, u8, w8, 0, 0, "less")["status"] == MISSING
 
 
 def test_binomial_band_by_hand():
