@@ -17,6 +17,7 @@ MODEL_CARD_MD = DOCS_DIR / "MODEL_CARD.md"
 
 # Where each claim status is written in the card: one section per kind of verdict.
 SECTIONS = {"holds": "Holds on held-out people", "fails": "Fails on held-out people",
+            "no difference": "No practical difference on held-out people",
             "inconclusive": "Not decided on held-out people", "insufficient data": "Not decided on held-out people",
             "unusable": "Not decided on held-out people", "not evaluated": "Not decided on held-out people",
             "by construction": "True by construction (not counted)"}
@@ -80,7 +81,8 @@ def summary(doc: dict) -> list[str]:
                      "the last cycle of a 60-frame history.")
     k = doc["tally"]
     lines.append(f"Paper claims on held-out people: {k['holds']} hold, {k['fails']} fail, {k['inconclusive']} "
-                 f"inconclusive, {k['insufficient data']} insufficient data, {k['unusable']} unusable, "
+                 f"inconclusive, {k.get('no difference', 0)} no difference, {k['insufficient data']} insufficient data, "
+                 f"{k['unusable']} unusable, "
                  f"{k['not evaluated']} not evaluated; {k['by_construction']} true by construction are not counted.")
     clf, rec = doc["classifiers"], doc.get("recognition_tally") or recognition_tally(doc)
     if "pose_gru" in clf and "moac" in clf:
@@ -94,11 +96,16 @@ def summary(doc: dict) -> list[str]:
 def _part(p: dict, doc: dict) -> str:
     unit = doc["columns"].get(p["metric"], {}).get("unit", "")
     label = doc["columns"].get(p["metric"], {}).get("label", p["metric"])
+    from .report import status_text
     if p["a_value"] is None or p["b_value"] is None:
         return f"{p['a']} vs {p['b']} ({label}, `{p['table']}`): not evaluated"
+    if p.get("kind") == "trend" and "values" in p:
+        return (f"{label} over {p['setting']} {', '.join(_fmt(x) for x in p['settings'])} (`{p['table']}`, on the "
+                f"{p['items']} items every row predicts): " + " → ".join(_fmt(v, unit) for v in p["values"])
+                + f", change over the range {_fmt(p['difference'], unit)}, 2σ {_fmt(p['bar'], unit)}: {status_text(p)}")
     a, b = p.get("a_paired", p["a_value"]["mean"]), p.get("b_paired", p["b_value"]["mean"])
     return (f"{p['a']} {_fmt(a, unit)} vs {p['b']} {_fmt(b, unit)} ({label}, `{p['table']}`, on the {p['items']} "
-            f"items both predict, 2σ {_fmt(p['bar'], unit)}): {p['status']}")
+            f"items both predict, 2σ {_fmt(p['bar'], unit)}): {status_text(p)}")
 
 
 def model_card(doc: dict) -> str:

@@ -10,7 +10,7 @@ from ..data.skeleton import SKELETON
 from . import metrics as M
 from . import stats as S
 from .harness import COLUMNS, RECOGNITION
-from .rows import CLAIMS, SHAPE_METRICS, SHAPE_PAIRS, SHAPE_TOLERANCE
+from .rows import CLAIMS, SHAPE_METRICS, SHAPE_PAIRS, SHAPE_TOLERANCE, Part, Trend
 
 COPY_BASELINES = ("nearest-window", "repeat-cycle")
 
@@ -100,40 +100,104 @@ def compare_rows(by_table: dict, store: dict, tabs: dict, table: str, a: str, b:
     if out["missing"]:
         return {**out, "status": S.MISSING, "difference": None, "bar": None, "people": 0, "takes": 0, "items": 0}
     res = S.compare(sa.items[metric], sb.items[metric_b], tabs[table].units, tabs[table].weights,
-                    sa.seed_std[metric], sb.seed_std[metric_b], direction, COLUMNS[metric].balanced, margin)
+                    sa.seed_std[metric], sb.seed_std[metric_b], direction, COLUMNS[metric].balanced, margin,
+                    COLUMNS[metric].unit)
     return {**out, **res}
 
 
+def compare_trend(by_table: dict, store: dict, tabs: dict, t: Trend) -> dict:
+    """A trend part with its numbers. It also carries a (the last setting's row) and b (the first's), so a reader
+    of pairs still reads it: its difference is the fitted change from b's setting to a's."""
+    rows = list(t.rows)
+    stats_ = [store.get(t.table, {}).get(r) for r in rows]
+    out = {"kind": "trend", "table": t.table, "rows": rows, "setting": t.setting, "settings": t.settings(),
+           "a": rows[-1], "b": rows[0], "metric": t.metric, "metric_b": t.metric, "direction": t.direction,
+           "margin": 0.0, "a_value": _value(by_table, t.table, rows[-1], t.metric),
+           "b_value": _value(by_table, t.table, rows[0], t.metric),
+           "missing": [r for r, s in zip(rows, stats_) if s is None or t.metric not in s.items]}
+    if out["missing"]:
+        return {**out, "status": S.MISSING, "difference": None, "bar": None, "p": None, "people": 0, "takes": 0,
+                "items": 0}
+    spec = COLUMNS[t.metric]
+    res = S.trend([s.items[t.metric] for s in stats_], tabs[t.table].units, tabs[t.table].weights,
+                  [s.seed_std[t.metric] for s in stats_], t.direction, spec.balanced, spec.unit)
+    return {**out, **res}
+
+
+def holm_correct(family: list[dict], what: str, alpha: float = S.ALPHA) -> None:
+    """Holm over a family of comparisons (each with its "p"): each gets "p_holm"; one the data say holds but Holm
+    does not pass is inconclusive, with the reason."""
+    for x, q in zip(family, S.holm([x["p"] for x in family])):
+        x["p_holm"] = float(q)
+        if x["status"] == S.HOLDS and q > alpha:
+            x.update(status=S.INCONCLUSIVE,
+                     reason=f"beyond its 2σ bar, but not after Holm's correction over {len(family)} {what} "
+                            f"(adjusted p {q:.2g} > {alpha})")
+
+
+def _claim_part(by_table: dict, store: dict, tabs: dict, claim, p: Part | Trend) -> dict:
+    """A part as the data say, or labelled in-sample / by construction (neither is counted)."""
+    if isinstance(p, Trend):
+        part = compare_trend(by_table, store, tabs, p)
+    else:
+        part = compare_rows(by_table, store, tabs, p.table, p.a, p.b, p.metric, p.direction, p.metric_b, p.margin)
+    construction = getattr(p, "construction", "") or claim.construction
+    if by_table.get(p.table, {}).get("in_sample"):
+        part.update(status=S.IN_SAMPLE, reason="an in-sample table never backs a claim")
+    elif construction:
+        part.update(status=S.BY_CONSTRUCTION, reason=construction)
+    return part
+
+
+def counted(part: dict) -> bool:
+    """A comparison made on the data: not by construction, in-sample or missing."""
+    return part["status"] not in (S.BY_CONSTRUCTION, S.IN_SAMPLE, S.MISSING)
+
+
+def _unusable(part: dict, failed: set) -> bool:
+    rec = {part["metric"], part["metric_b"]} & set(RECOGNITION)
+    return counted(part) and any((part["table"], m) in failed for m in rec)
+
+
 def evaluate_claims(by_table: dict, store: dict, tabs: dict, recognition: list[dict]) -> list[dict]:
+    """Every claim with its parts. The counted parts of all claims are one Holm family; a part on a classifier that
+    failed its check is then unusable, keeping what the data would say in "data_status"."""
     failed = {(c["table"], c["metric"]) for c in recognition if not c["passed"]}
+    parts_of = [[_claim_part(by_table, store, tabs, claim, p) for p in claim.parts] for claim in CLAIMS]
+    holm_correct([x for parts in parts_of for x in parts if counted(x)], "claim parts")
     out = []
-    for claim in CLAIMS:
-        parts = []
-        for p in claim.parts:
-            part = compare_rows(by_table, store, tabs, p.table, p.a, p.b, p.metric, p.direction, p.metric_b, p.margin)
-            if by_table.get(p.table, {}).get("in_sample"):
-                part.update(status=S.IN_SAMPLE, reason="an in-sample table never backs a claim")
-            elif p.construction or claim.construction:
-                part.update(status=S.BY_CONSTRUCTION, reason=p.construction or claim.construction)
-            elif part["status"] != S.MISSING and {p.metric, p.metric_b} & set(RECOGNITION) and \
-                    any((p.table, m) in failed for m in {p.metric, p.metric_b} & set(RECOGNITION)):
-                part.update(status=S.UNUSABLE, reason="the ground truth does not score best on this classifier in "
-                                                      f"table {p.table}, so its recognition numbers cannot rank rows")
-            parts.append(part)
-        counted = [x["status"] for x in parts if x["status"] != S.BY_CONSTRUCTION]
-        status = S.BY_CONSTRUCTION if claim.construction else S.combine(counted)
-        out.append({"id": claim.id, "paper": claim.paper, "text": claim.text, "status": status,
-                    "reason": claim.construction or next((x.get("reason") for x in parts if x["status"] == status
-                                                          and x.get("reason")), ""),
-                    "parts": parts})
+    for claim, parts in zip(CLAIMS, parts_of):
+        for part in parts:
+            if _unusable(part, failed):
+                part.update(data_status=part["status"], status=S.UNUSABLE,
+                            reason="the ground truth does not score best on this classifier in table "
+                                   f"{part['table']}, so its recognition numbers cannot rank rows")
+        statuses = [x["status"] for x in parts if x["status"] != S.BY_CONSTRUCTION]
+        status = S.BY_CONSTRUCTION if claim.construction else S.combine(statuses)
+        doc = {"id": claim.id, "paper": claim.paper, "text": claim.text, "status": status,
+               "reason": claim.construction or next((x.get("reason") for x in parts if x["status"] == status
+                                                     and x.get("reason")), ""),
+               "parts": parts}
+        if status == S.UNUSABLE:
+            doc["data_status"] = S.combine([x.get("data_status", x["status"]) for x in parts
+                                            if x["status"] != S.BY_CONSTRUCTION])
+        out.append(doc)
     return out
+
+
+def comparisons(claims: list[dict], copying: list[dict]) -> dict:
+    """How many comparisons each family made, and how they are corrected."""
+    return {"claims": sum(counted(p) for c in claims for p in c["parts"]),
+            "copying": sum(counted(c) for c in copying),
+            "correction": f"{S.CORRECTION}; two families (the claim parts, the copying comparisons), each corrected "
+                          "on its own"}
 
 
 def claims_tally(claims: list[dict]) -> dict:
     """How many claims have each status; "by construction" ones are listed and not counted."""
-    counted = [c for c in claims if c["status"] != S.BY_CONSTRUCTION]
-    out = {s: sum(c["status"] == s for c in counted) for s in S.STATUSES if s != S.BY_CONSTRUCTION}
-    out.update(counted=len(counted), by_construction=len(claims) - len(counted))
+    listed = [c for c in claims if c["status"] != S.BY_CONSTRUCTION]
+    out = {s: sum(c["status"] == s for c in listed) for s in S.STATUSES if s != S.BY_CONSTRUCTION}
+    out.update(counted=len(listed), by_construction=len(claims) - len(listed))
     return out
 
 
@@ -160,12 +224,25 @@ def copying_checks(by_table: dict, store: dict, tabs: dict) -> list[dict]:
                 if base is None or base not in rows or base == r["id"]:
                     continue
                 c = compare_rows(by_table, store, tabs, tid, r["id"], base, "ade", "less")
-                what = {"nearest-window": "memorising", "zero-velocity": "standing still"}.get(base, "copying its history")
-                verdict = (f"beats {rows[base]['label'].lower()}" if c["status"] == S.HOLDS else
-                           f"does not beat {rows[base]['label'].lower()}: its accuracy is no better than {what}")
                 out.append({**c, "row": r["id"], "label": r["label"], "baseline": base,
-                            "baseline_label": rows[base]["label"], "verdict": verdict})
+                            "baseline_label": rows[base]["label"]})
+    holm_correct([c for c in out if counted(c)], "copying comparisons")
+    for c in out:
+        c["verdict"] = copying_verdict(c)
     return out
+
+
+def copying_verdict(c: dict) -> str:
+    """What a copying comparison says, after Holm (a model "beats" a baseline only when the comparison holds)."""
+    base = c["baseline_label"].lower()
+    what = {"nearest-window": "memorising", "zero-velocity": "standing still"}.get(c["baseline"], "copying its history")
+    if c["status"] == S.HOLDS:
+        return f"beats {base}"
+    if c["status"] == S.NO_DIFFERENCE:
+        return f"is no different from {base} (the difference is below the practical minimum): no better than {what}"
+    if c["status"] == S.FAILS:
+        return f"does not beat {base}: its accuracy is worse than {what}"
+    return f"does not beat {base}: its accuracy is not shown to be better than {what}"
 
 
 def shape_comparison(by_table: dict, store: dict, tabs: dict) -> list[dict]:

@@ -730,21 +730,23 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
         progress(f"table {table['id']}: {len(tab.wins)} windows, {len(doc['rows'])} rows ({doc['seconds']:.0f} s)")
         tables.append(doc)
 
-    from .checks import (claims_tally, copying_checks, evaluate_claims, recognition_checks, sanity_checks,
-                         shape_comparison, variant_report)
+    from .checks import (claims_tally, comparisons, copying_checks, evaluate_claims, recognition_checks,
+                         sanity_checks, shape_comparison, variant_report)
     sanity = sanity_checks(tables, clf_report, cfg)
     recognition = recognition_checks(tables, clf_report)
     sanity += recognition
     by_table = {t["id"]: t for t in tables}
     claims = evaluate_claims(by_table, store, tabs, recognition)
+    copying = copying_checks(by_table, store, tabs)
     doc = {"format": "motion-futures/results", "version": 2,
            "columns": {c: {"label": v.label, "unit": v.unit, "better": v.better} for c, v in COLUMNS.items()},
            "k": k, "fps": FPS, "training_seeds": cfg["training_seeds"], "sampling_seeds": cfg["sampling_seeds"],
            "bootstrap": cfg["bootstrap"], "min_people": S.MIN_PEOPLE, "min_takes": S.MIN_TAKES,
+           "comparisons": comparisons(claims, copying),
            "models": served_hashes, "classifiers": clf_report,
            "classifier_config": {k2: v for k2, v in cfg["classifier"].items() if k2 != "selection"},
            "sanity": sanity, "claims": claims,
-           "copying": copying_checks(by_table, store, tabs),
+           "copying": copying,
            "shape": shape_comparison(by_table, store, tabs),
            "variants": variant_report(by_table, tabs),
            "data": data_summary(clips),

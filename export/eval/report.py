@@ -52,7 +52,7 @@ def fmt(value: float | None, unit: str = "") -> str:
 
 
 def cell(v: dict | None, unit: str) -> str:
-    """mean ± std (bootstrap over takes and seed variance combined); the mean alone when the std is 0."""
+    """mean ± std (bootstrap over people and takes and seed variance combined); the mean alone when the std is 0."""
     if not v:
         return "—"
     return f"{fmt(v['mean'], unit)} ± {fmt(v['std'], unit)}" if v.get("std") else fmt(v["mean"], unit)
@@ -63,7 +63,32 @@ def label_of(col: str) -> str:
     return f"{c.label} ({c.unit})" if c and c.unit else (c.label if c else col)
 
 
+def status_text(x: dict) -> str:
+    """A part's or claim's status; an unusable one also says what the data alone would say."""
+    return x["status"] + (f"; the data would say: {x['data_status']}" if x.get("data_status") else "")
+
+
+def _holm(p: dict) -> str:
+    return f", p {fmt(p['p'])}, Holm {fmt(p['p_holm'])}" if p.get("p_holm") is not None else ""
+
+
+def trend_text(p: dict) -> str:
+    """A trend part: each setting's paired value, the slope per step in rank and the fitted change over the range."""
+    label = COLUMNS[p["metric"]].label if p["metric"] in COLUMNS else p["metric"]
+    unit = COLUMNS[p["metric"]].unit if p["metric"] in COLUMNS else ""
+    where = f"{label}, {p['table']}, {p['setting']} {', '.join(fmt(x) for x in p['settings'])}"
+    if p["status"] == "not evaluated" and p.get("missing"):
+        return f"trend of {where}: missing {', '.join(p['missing'])}"
+    values = " → ".join(fmt(v, unit) for v in p.get("values", []))
+    text = (f"trend of {where} (on the {p['items']} items every row predicts: {values}; least-squares slope per step "
+            f"in rank {fmt(p['slope'], unit)}, change over the range {fmt(p['difference'], unit)}, 2σ "
+            f"{fmt(p['bar'], unit)}{_holm(p)}; {p['people']} people, {p['takes']} takes): {status_text(p)}")
+    return text + (f" ({p['reason']})" if p.get("reason") else "")
+
+
 def part_text(p: dict) -> str:
+    if p.get("kind") == "trend":
+        return trend_text(p)
     label = COLUMNS[p["metric"]].label if p["metric"] in COLUMNS else p["metric"]
     if p["status"] == "not evaluated":
         return f"{p['a']} vs {p['b']} ({label}, {p['table']}): missing {', '.join(p['missing'])}"
@@ -75,29 +100,48 @@ def part_text(p: dict) -> str:
                                           or fmt(p["b_paired"], unit) != fmt(p["b_value"]["mean"], unit)):
         paired = f" on the {p['items']} items both predict: {fmt(p['a_paired'], unit)} vs {fmt(p['b_paired'], unit)};"
     text = (f"{p['a']} {cell(p['a_value'], unit)} vs {p['b']}{other} {cell(p['b_value'], unit)} "
-            f"({label}, {p['table']};{paired} difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}{margin}; "
-            f"{p['people']} people, {p['takes']} takes): {p['status']}")
+            f"({label}, {p['table']};{paired} difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}{margin}"
+            f"{_holm(p)}; {p['people']} people, {p['takes']} takes): {status_text(p)}")
     return text + (f" ({p['reason']})" if p.get("reason") else "")
 
 
 def tally_text(t: dict) -> str:
-    return (f"{t['holds']} hold, {t['fails']} fail, {t['inconclusive']} inconclusive, {t['insufficient data']} "
-            f"insufficient data, {t['unusable']} unusable, {t['not evaluated']} not evaluated; "
-            f"{t['by_construction']} true by construction (not counted)")
+    return (f"{t['holds']} hold, {t['fails']} fail, {t['inconclusive']} inconclusive, {t.get('no difference', 0)} no "
+            f"difference, {t['insufficient data']} insufficient data, {t['unusable']} unusable, {t['not evaluated']} "
+            f"not evaluated; {t['by_construction']} true by construction (not counted)")
+
+
+# The practical minimum (stats.practical_minimum), in words.
+PRACTICAL_MINIMUM = ("1 mm or 1% of the baseline's value, whichever is larger, for lengths (m, mm); 1 point for % "
+                     "metrics; 1% of the baseline otherwise")
 
 
 def _claims(doc: dict) -> list[str]:
+    n = (doc.get("comparisons") or {}).get("claims")
     lines = ["## Paper claims on held-out people", "",
              f"{tally_text(doc['tally'])}. A part **holds** only when the paired difference lies in the claimed "
-             "direction by more than its 2σ bar, which combines a cluster bootstrap over takes with the seed variance; "
-             f"fewer than {doc['min_people']} held-out people or {doc['min_takes']} held-out takes make it "
-             "**insufficient data**; a recognition part in a table where the ground truth does not score best is "
-             "**unusable**; a claim that holds whatever the data is **by construction** and not counted.", "",
+             "direction by more than its 2σ bar, which combines a two-level cluster bootstrap (the held-out people "
+             "resampled, then each drawn person's takes) with the seed variance, and only when it also passes Holm's "
+             f"step-down correction at family-wise α 0.05 over the {'' if n is None else f'{n} '}claim parts "
+             "counted (not by construction, in-sample or missing; one-sided p = 1 − Φ(difference in the claimed "
+             "direction / σ), σ half the bar); a difference below the practical minimum "
+             f"({PRACTICAL_MINIMUM}), or identical predictions, is **no difference**, never holds or fails; "
+             f"fewer than {doc['min_people']} held-out people or {doc['min_takes']} held-out takes among the items both "
+             "rows predict make it **insufficient data**; a trend over settings is tested as one trend, the "
+             "bootstrapped least-squares slope of the metric against the settings' rank (its change over the range "
+             "against the same bar, rules and correction); a recognition part in a table where the ground truth does "
+             "not score best is **unusable** (with what the data alone would say); a claim that holds whatever the data "
+             "is **by construction** and not counted.", "",
              "| claim | paper | status | numbers |", "|---|---|---|---|"]
     for c in doc["claims"]:
         nums = "<br>".join(part_text(p) for p in c["parts"])
-        lines.append(f"| {c['text']} | {c['paper']} | **{c['status']}** | {nums} |")
+        lines.append(f"| {c['text']} | {c['paper']} | **{c['status']}**"
+                     + (f"; the data would say: {c['data_status']}" if c.get("data_status") else "")
+                     + f" | {nums} |")
     return lines + [""]
+
+
+COPY_WORDS = {"holds": "beats", "no difference": "no different from"}
 
 
 def _copying(doc: dict) -> list[str]:
@@ -107,7 +151,8 @@ def _copying(doc: dict) -> list[str]:
              "Every model against the baselines that copy the history (repeat its last cycle) and memorise the "
              "training people (the nearest training window's future), on best-of-K ADE (root-relative), paired on the "
              "windows both predict. A model that does not beat the nearest training window on held-out people reports "
-             "memorisation; one that does not beat repeating the last cycle reports copying.", ""]
+             "memorisation; one that does not beat repeating the last cycle reports copying. "
+             + _copying_rule(doc), ""]
     by_table: dict[str, dict[str, dict[str, dict]]] = {}
     keys = {"nearest-window": "nearest", "repeat-cycle-60": "long", "zero-velocity": "zero"}
     for c in doc["copying"]:
@@ -121,7 +166,7 @@ def _copying(doc: dict) -> list[str]:
             for key in ("nearest", "own", "long", "zero"):
                 c = cs.get(key)
                 cells.append("—" if not c else f"{fmt(c['difference'], 'm')} m, 2σ {fmt(c['bar'], 'm')}: "
-                                               f"{'beats' if c['status'] == 'holds' else 'does not beat'} ({c['status']})")
+                                               f"{COPY_WORDS.get(c['status'], 'does not beat')} ({c['status']})")
             lines.append(f"| {label} | " + " | ".join(cells) + " |")
         lines.append("")
     memo = [c for c in doc["copying"] if c["baseline"] == "nearest-window" and c["status"] != "holds"]
@@ -129,6 +174,14 @@ def _copying(doc: dict) -> list[str]:
         lines += ["Not beating the nearest training window (reporting memorisation): "
                   + "; ".join(f"{c['label']} in `{c['table']}` ({c['status']})" for c in memo) + ".", ""]
     return lines
+
+
+def _copying_rule(doc: dict) -> str:
+    n = (doc.get("comparisons") or {}).get("copying")
+    return (f"A model **beats** a baseline when its ADE is lower by more than the 2σ bar and the comparison passes "
+            f"Holm's step-down correction at family-wise α 0.05 over the {'' if n is None else f'{n} '}copying "
+            "comparisons (a family of their own, apart from the claims); a difference below the practical minimum "
+            "(1 mm or 1% of the baseline's ADE) is **no different from**.")
 
 
 def _shape(doc: dict) -> list[str]:
@@ -309,8 +362,9 @@ def markdown(doc: dict) -> str:
              "last frames of its own history length.",
              f"- K = {doc['k']} futures per history for stochastic models (1 for deterministic ones); training seeds "
              f"{doc['training_seeds']} × sampling seeds {doc['sampling_seeds']} (a row says how many runs it has).",
-             f"- A cell is the mean over runs ± the combined std: a cluster bootstrap over takes ({doc['bootstrap']['rounds']} "
-             "resamples; windows overlap and cluster within a take) and the std over runs.",
+             f"- A cell is the mean over runs ± the combined std: a two-level cluster bootstrap ({doc['bootstrap']['rounds']} "
+             "resamples of the held-out people, then of each drawn person's takes; windows overlap and cluster within "
+             "a take, takes within a person) and the std over runs.",
              "- Accuracy columns are the mean over the table's actions of each action's accuracy (LCP-VAE's "
              "\"mean class accuracy\").",
              "- Predictions go through the Python predictor (`export/sample/predictor.py`), the code path the "

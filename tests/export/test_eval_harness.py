@@ -157,7 +157,12 @@ def test_claim_statuses_can_fail_and_construction_is_not_counted(doc):
     for c in doc["claims"]:
         for p in c["parts"]:
             if p["status"] == S.HOLDS:
-                assert p["bar"] > 0 and p["people"] >= 2 and p["takes"] >= 5
+                assert p["bar"] > 0 and p["people"] >= S.MIN_PEOPLE and p["takes"] >= S.MIN_TAKES
+                assert p["p_holm"] <= S.ALPHA and abs(p["difference"]) >= p["minimum"]
+    counted = [p for c in doc["claims"] for p in c["parts"] if "p_holm" in p]
+    assert doc["comparisons"]["claims"] == len(counted) and "Holm" in doc["comparisons"]["correction"]
+    assert doc["comparisons"]["copying"] == sum("p_holm" in c for c in doc["copying"])
+    assert (doc["min_people"], doc["min_takes"]) == (S.MIN_PEOPLE, S.MIN_TAKES)
     failed = {(s["table"], s["metric"]) for s in doc["sanity"] if s["id"].startswith("oracle-best") and not s["passed"]}
     for c in doc["claims"]:
         for p in c["parts"]:
@@ -173,6 +178,11 @@ def test_copying_and_memorising_baselines_meet_every_model(doc):
     assert ("heldout_2s", "regression-gru", "repeat-cycle-10") in got       # its own history length
     for c in doc["copying"]:
         assert c["verdict"].startswith("beats") == (c["status"] == S.HOLDS)
+        assert ("no different from" in c["verdict"]) == (c["status"] == S.NO_DIFFERENCE)
+    # 10 frames hold no cycle: repeat-cycle-10 holds the last pose, as zero-velocity does
+    same = next(c for c in doc["copying"] if c["row"] == "zero-velocity" and c["baseline"] == "repeat-cycle-10")
+    enough = same["people"] >= S.MIN_PEOPLE and same["takes"] >= S.MIN_TAKES
+    assert same["status"] == (S.NO_DIFFERENCE if enough else S.INSUFFICIENT) or same["status"] == S.NO_DIFFERENCE
     assert not any(c["table"] == "in_sample" for c in doc["copying"])
 
 
