@@ -217,10 +217,12 @@ def copying_checks(by_table: dict, store: dict, tabs: dict) -> list[dict]:
             continue
         rows = {r["id"]: r for r in table["rows"] if r.get("values")}
         for r in table["rows"]:
-            if r["kind"] != "model" or "ade" not in r.get("values", {}):
+            # a row whose futures are not predictions (harness.does_not_predict) is marked, not scored
+            if r["kind"] != "model" or "ade" not in r.get("values", {}) or r.get("flag"):
                 continue
             cycle = f"repeat-cycle-{r.get('history_frames')}"
-            for base in ("nearest-window", cycle if cycle in rows else None, "repeat-cycle-60", "zero-velocity"):
+            for base in ("nearest-window", cycle if cycle in rows else None, "repeat-cycle-60", "zero-velocity",
+                         "regression-gru"):
                 if base is None or base not in rows or base == r["id"]:
                     continue
                 c = compare_rows(by_table, store, tabs, tid, r["id"], base, "ade", "less")
@@ -229,6 +231,27 @@ def copying_checks(by_table: dict, store: dict, tabs: dict) -> list[dict]:
     holm_correct([c for c in out if counted(c)], "copying comparisons")
     for c in out:
         c["verdict"] = copying_verdict(c)
+    return out
+
+
+def served_verdicts(copying: list[dict], served: list[str], tables=("heldout_1s", "heldout_2s"),
+                    baselines=("zero-velocity", "regression-gru", "nearest-window")) -> list[dict]:
+    """The tally a reader needs (Evaluation v3, item 6): for each served learned model, whether it is shown
+    to beat zero-velocity, the regression GRU and the nearest training window, in each held-out table; the
+    statuses are the copying family's, after Holm."""
+    out = []
+    for row in served:
+        for table in tables:
+            for base in baselines:
+                if base == row:
+                    continue
+                c = next((x for x in copying if x["row"] == row and x["table"] == table and x["baseline"] == base), None)
+                out.append({"row": row, "table": table, "baseline": base,
+                            "status": c["status"] if c else S.MISSING,
+                            "difference": c.get("difference") if c else None, "bar": c.get("bar") if c else None,
+                            "a_paired": c.get("a_paired") if c else None, "b_paired": c.get("b_paired") if c else None,
+                            "items": c.get("items") if c else 0, "label": c["label"] if c else row,
+                            "baseline_label": c["baseline_label"] if c else base})
     return out
 
 
@@ -259,11 +282,19 @@ def shape_comparison(by_table: dict, store: dict, tabs: dict) -> list[dict]:
                     continue
                 c = compare_rows(by_table, store, tabs, tid, without, with_, metric, "greater")
                 ratio = b["mean"] / a["mean"] if a["mean"] else math.nan
+                flags = [_flag_of(by_table, tid, x) for x in (with_, without)]
                 out.append({"table": tid, "with": with_, "without": without, "metric": metric,
                             "with_value": a, "without_value": b, "ratio": ratio,
-                            "within": bool(abs(ratio - 1) <= SHAPE_TOLERANCE), "tolerance": SHAPE_TOLERANCE,
+                            # a row that does not predict is never "within 10%" of one that does
+                            "within": bool(abs(ratio - 1) <= SHAPE_TOLERANCE) and not any(flags),
+                            "flag": "; ".join(f for f in flags if f), "tolerance": SHAPE_TOLERANCE,
                             "difference": c["difference"], "bar": c["bar"]})
     return out
+
+
+def _flag_of(by_table: dict, table: str, row: str) -> str:
+    r = next((x for x in by_table.get(table, {}).get("rows", []) if x["id"] == row), None)
+    return (r or {}).get("flag", "")
 
 
 def variant_report(by_table: dict, tabs: dict) -> dict:

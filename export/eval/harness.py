@@ -27,6 +27,7 @@ from ..data.clip import Clip
 from ..data.skeleton import SKELETON
 from ..data.sources import FPS
 from ..data.split import short_horizons
+from ..data.vocabulary import GROUPS, group as group_of
 from ..data.windows import windows as train_windows
 from ..manifest import read_manifest
 from ..methods import METHODS, method_for
@@ -37,6 +38,7 @@ from ..sample.predictor import PREDICTORS, predictor_for
 from ..sample.request import PredictError, Request
 from . import baselines as B
 from . import metrics as M
+from . import realism_columns as R
 from . import stats as S
 from .classifiers import (Classifier, action_accuracy, select_classifier, snippet_accuracy, snippets,
                           split_snippets, train_classifier)
@@ -87,8 +89,31 @@ COLUMNS: dict[str, Column] = {
     "speed": Column("Joint speed, last second", "m/s", "", section="plausibility"),
     "length": Column("Mean length", "frames", "", section="plausibility"),
     "stopped": Column("Segments stopped (Eq. 8)", "%", "", section="plausibility"),
+    # Evaluation v3: does the motion look like people's (export/eval/realism_columns.py)?
+    "mpjpe_cm": Column("Per-joint error, best of K (root-relative)", "cm", "lower", True, section="realism"),
+    "mpjpe_f_cm": Column("Per-joint error at the horizon, best of K (root-relative)", "cm", "lower", True,
+                         section="realism"),
+    **{f"speed_ratio_s{s}": Column(f"Joint speed / truth's, second {s}", "×", "", True, section="realism")
+       for s in range(1, R.SECONDS + 1)},
+    **{f"root_ratio_s{s}": Column(f"Root speed / truth's, second {s}", "×", "", True, section="realism")
+       for s in range(1, R.SECONDS + 1)},
+    "follow": Column("Speed follows the history (Spearman ρ, first second)", "", "higher", section="realism"),
+    "skate": Column("Foot skating (median contact speed)", "m/s", "lower", section="realism"),
+    "hip_range": Column("Hip vertical range", "m", "", section="realism"),
+    "outside": Column("Truth outside every sample", "%", "lower", True, section="realism"),
+    "outside_naive": Column("Truth outside every sample (the audit's rule)", "%", "", True),
+    "spread_cm": Column("Pose spread at the last frame", "cm", "higher", section="realism"),
+    "spread_all_cm": Column("Pose spread over the future", "cm", "higher"),
+    "full": Column("Samples lasting the whole horizon", "%", "", section="realism"),
+    "pskl_gp": Column("PSKL (truth ‖ prediction)", "", "lower", True, section="realism"),
+    "pskl_pg": Column("PSKL (prediction ‖ truth)", "", "lower", True, section="realism"),
+    "cmd": Column("CMD (BeLFusion)", "m/frame", "lower", True, section="realism"),
+    **{c: Column(c, "m/s", "") for s in range(1, R.SECONDS + 1)
+       for c in (f"speed_s{s}", f"root_s{s}", f"truth_speed_s{s}", f"truth_root_s{s}")},
+    "history_speed": Column("History's joint speed", "m/s", ""),
 }
-SET_LEVEL = ("fid",)                 # one value per run, not per item
+SET_LEVEL = ("fid", *R.SET_COLUMNS)  # one value per run, not per item
+RATIO = R.RATIOS                     # a ratio of two columns' means over the items both have
 RECOGNITION = ("acc_pose", "acc_moac")
 
 TABLE_KEYS = ("id", "title", "about", "source", "history_frames", "horizon_frames", "stride", "truth")
@@ -126,8 +151,24 @@ def table_windows(clips: list[Clip], table: dict) -> list[HeldOutWindow]:
     table has ground truth, the horizon's captured frames after it; from the held-out people ("test") or the
     training people ("train")."""
     t = int(table["horizon_frames"]) if table["truth"] else 0
-    return cut_windows(clips, table["source"], int(table["history_frames"]), t, int(table["stride"]),
+    wins = cut_windows(clips, table["source"], int(table["history_frames"]), t, int(table["stride"]),
                        table.get("context_frames"))
+    return capped_windows(wins, table.get("cap_per_person_action"))
+
+
+def capped_windows(wins: list[HeldOutWindow], cap: int | None) -> list[HeldOutWindow]:
+    """At most `cap` windows per (person, action), spread evenly over that person's windows of it in clip
+    order: salsa partner 61 alone holds 458 of the 748 held-out seconds, and without a cap an all-action
+    mean would be a salsa mean. None keeps every window."""
+    if not cap:
+        return wins
+    groups: dict[tuple[str, str], list[int]] = {}
+    for i, w in enumerate(wins):
+        groups.setdefault((str(w.subject), w.action), []).append(i)
+    keep = set()
+    for idx in groups.values():
+        keep |= {idx[j] for j in np.unique(np.linspace(0, len(idx) - 1, min(cap, len(idx))).round().astype(int))}
+    return [w for i, w in enumerate(wins) if i in keep]
 
 
 def requested_actions(table: dict, actions: list[str], window: int, own: str) -> list[str]:
@@ -356,7 +397,7 @@ def to_window_frame(world: np.ndarray, p: Placement) -> np.ndarray:
     return rotate_about_y(shifted, -p.angle)
 
 
-def item_metrics(s: Sample, win: HeldOutWindow, t: int, truth: bool, dtw: bool) -> dict[str, float]:
+def item_metrics(s: Sample, win: HeldOutWindow, t: int, truth: bool, dtw: bool, history: int) -> dict[str, float]:
     """One item's values: accuracy against the ground truth, spread, and plausibility of the raw futures."""
     f, k = s.futures, len(s.futures)
     v: dict[str, float] = {}
@@ -386,6 +427,7 @@ def item_metrics(s: Sample, win: HeldOutWindow, t: int, truth: bool, dtw: bool) 
     stops = [seg["stopped"] for x in s.samples for seg in x.get("segments", []) if "stopped" in seg]
     if stops and any("action" in seg for x in s.samples for seg in x.get("segments", [])):
         v["stopped"] = 100 * float(np.mean(stops))
+    v.update(R.item_realism(f, s.lengths, win.truth if truth else None, win.history[-history:], t))
     return v
 
 
@@ -431,7 +473,8 @@ def run_metrics(samples: list[Sample | None], tab: Table, ctx: Context, first: b
         if s is None:
             continue
         w, a = tab.items[i]
-        got = item_metrics(s, tab.wins[w], t, bool(tab.cfg["truth"]), bool(tab.cfg.get("dtw")))
+        got = item_metrics(s, tab.wins[w], t, bool(tab.cfg["truth"]), bool(tab.cfg.get("dtw")),
+                           int(tab.cfg["history_frames"]))
         if tab.truth_rr is not None:
             got.update(mm_metrics(s, w, tab))
         for c, x in got.items():
@@ -442,6 +485,9 @@ def run_metrics(samples: list[Sample | None], tab: Table, ctx: Context, first: b
                 lengths.setdefault(seg.get("action") or a, []).append(int(seg["length"]))
     done = [i for i, s in enumerate(samples) if s is not None]
     sets, boot = {}, {}
+    sets.update(R.set_realism([None if s is None else s.futures for s in samples],
+                              [tab.wins[w].truth for w, _ in tab.items] if tab.cfg["truth"] else None,
+                              [a for _, a in tab.items], vals))
     stride = int(ctx.cfg["snippet_stride"])
     clf0 = ctx.classifiers["pose_gru"]
     if t >= clf0.frames and done:
@@ -494,19 +540,29 @@ class RowStats:
     seed_std: dict[str, float]
 
 
-def summarise_runs(results: list[RunResult], tab: Table) -> tuple[dict, RowStats]:
-    """values[col] = {"mean", "std" (bootstrap and seeds combined), "seed_std", "boot_std", "n"}."""
+def summarise_runs(results: list[RunResult], tab: Table, mask: np.ndarray | None = None, suffix: str = "",
+                   cols=None) -> tuple[dict, RowStats]:
+    """values[col] = {"mean", "std" (bootstrap and seeds combined), "seed_std", "boot_std", "n"}, over the
+    items in `mask` (all by default; set-level columns read their "col{suffix}" value of each run)."""
     values, items, seed_std = {}, {}, {}
+    keep = np.ones(len(tab.items), dtype=bool) if mask is None else mask
     for col, spec in COLUMNS.items():
+        if cols is not None and col not in cols:
+            continue
         if col in SET_LEVEL:
-            per_run = [r.sets[col] for r in results if col in r.sets]
-            if not per_run:
+            per_run = [r.sets[col + suffix] for r in results if col + suffix in r.sets]
+            s = S.summarise(per_run) if per_run else None
+            if s is None:
                 continue
-            s = S.summarise(per_run)
-            boot = next((r.boot[col] for r in results if col in r.boot), 0.0)
+            boot = next((r.boot[col] for r in results if col in r.boot), 0.0) if not suffix else 0.0
             values[col] = {**s, "seed_std": s["std"], "boot_std": boot, "std": math.hypot(s["std"], boot)}
             continue
-        stack = np.stack([r.values[col] for r in results])
+        if col in RATIO:
+            got = _ratio(results, tab, keep, *RATIO[col])
+            if got is not None:
+                values[col] = got
+            continue
+        stack = np.stack([np.where(keep, r.values[col], np.nan) for r in results])
         if not np.isfinite(stack).any():
             continue
         per_run = [S.aggregate(v, tab.units, spec.balanced) for v in stack]
@@ -517,9 +573,104 @@ def summarise_runs(results: list[RunResult], tab: Table) -> tuple[dict, RowStats
             warnings.simplefilter("ignore", RuntimeWarning)
             mean_items = np.nanmean(stack, axis=0)
         boot = S.cluster_std(mean_items, tab.units, tab.weights, spec.balanced)
-        values[col] = {**s, "seed_std": s["std"], "boot_std": boot, "std": math.hypot(s["std"], boot)}
+        values[col] = {**s, "seed_std": s["std"], "boot_std": boot, "std": math.hypot(s["std"], boot), "n": int(np.isfinite(mean_items).sum())}
         items[col], seed_std[col] = mean_items, s["std"]
     return values, RowStats(items, seed_std)
+
+
+def _ratio(results: list[RunResult], tab: Table, keep: np.ndarray, num: str, den: str) -> dict | None:
+    """A ratio of means (realism.speed.ratio_to_truth) over the items with both values, per run; its
+    bootstrap std from the same people-then-takes resamples."""
+    both = [keep & np.isfinite(r.values[num]) & np.isfinite(r.values[den]) for r in results]
+    per_run = [float(r.values[num][b].mean() / r.values[den][b].mean()) for r, b in zip(results, both)
+               if b.any() and r.values[den][b].mean() > 0]
+    s = S.summarise(per_run)
+    if s is None:
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        n = np.nanmean(np.stack([np.where(b, r.values[num], np.nan) for r, b in zip(results, both)]), 0)
+        d = np.nanmean(np.stack([np.where(b, r.values[den], np.nan) for r, b in zip(results, both)]), 0)
+        boot = S.resampled(n, tab.units, tab.weights) / S.resampled(d, tab.units, tab.weights)
+    boot = boot[np.isfinite(boot)]
+    sd = float(boot.std(ddof=1)) if boot.size > 1 else 0.0
+    return {**s, "seed_std": s["std"], "boot_std": sd, "std": math.hypot(s["std"], sd), "n": int(np.isfinite(n).sum())}
+
+
+GROUP_COLUMNS = ("ade", "fde", "mpjpe_cm", "mpjpe_f_cm", "apd", "foot", "cut", "length", "mmade",
+                 *[c for c, spec in COLUMNS.items() if spec.section == "realism"])
+
+
+def by_group(results: list[RunResult], tab: Table) -> dict[str, dict]:
+    """Every realism and accuracy column per action group (walk, run, jump, dance, other): no failure hides
+    in a mean over all actions. Each group's values are over its own items, with their own bar."""
+    groups = np.array([group_of(a) for _, a in tab.items])
+    out = {}
+    for g in GROUPS:
+        mask = groups == g
+        if mask.any():
+            values, _ = summarise_runs(results, tab, mask, f"@{g}", GROUP_COLUMNS)
+            out[g] = {"items": int(mask.sum()), "people": len(set(tab.units.person[mask])),
+                      "takes": len(set(tab.units.take[mask])), "values": values}
+    return out
+
+
+FLAG_CUT = 5.0             # % of samples the output guard cuts
+FLAG_LENGTH = 0.5          # of the horizon: samples shorter than that on average do not predict it
+
+
+def does_not_predict(values: dict, horizon: int) -> str:
+    """Why a row's futures are not predictions (Evaluation v3, item 4), or "": the output guard cuts more
+    than 5% of its samples, or they last less than half the horizon on average. Such a row is flagged in
+    every table and kept out of every tally and "within 10%"."""
+    reasons = []
+    cut = values.get("cut", {}).get("mean")
+    if cut is not None and cut > FLAG_CUT:
+        reasons.append(f"the output guard cuts {cut:.0f}% of its samples (more than {FLAG_CUT:.0f}%)")
+    length = values.get("length", {}).get("mean")
+    if length is not None and length < FLAG_LENGTH * horizon:
+        reasons.append(f"its samples last {length:.1f} of {horizon} frames on average (less than half)")
+    return "; ".join(reasons)
+
+
+PAIRED_ROWS = ("oracle", "zero-velocity", "regression-gru")
+PAIRED_COLUMNS = ("ade", "fde", "mpjpe_cm", "mpjpe_f_cm", "skate", "hip_range", "speed_ratio_s1", "speed_ratio_s2")
+
+
+def on_accepted(stats: dict, row: str, tab: Table) -> dict:
+    """A row that refuses windows is compared only on the windows it accepts: the ground truth's,
+    zero-velocity's and the regression GRU's values on exactly those items, with their count."""
+    mine = stats.get(row)
+    if mine is None or "ade" not in mine.items and "length" not in mine.items:
+        return {}
+    key = "ade" if "ade" in mine.items else "length"
+    mask = np.isfinite(mine.items[key])
+    out = {"items": int(mask.sum()), "rows": {}}
+    for other in PAIRED_ROWS:
+        theirs = stats.get(other)
+        if theirs is None or other == row:
+            continue
+        vals = {}
+        for col in PAIRED_COLUMNS:
+            if col in RATIO:
+                num, den = (theirs.items.get(c) for c in RATIO[col])
+                if num is not None and den is not None and np.isfinite(den[mask]).any():
+                    ok = mask & np.isfinite(num) & np.isfinite(den)
+                    vals[col] = float(num[ok].mean() / den[ok].mean())
+            elif col in theirs.items:
+                vals[col] = S.aggregate(np.where(mask, theirs.items[col], np.nan), tab.units)
+        out["rows"][other] = vals
+    mine_vals = {}
+    for col in PAIRED_COLUMNS:
+        if col in RATIO:
+            num, den = (mine.items.get(c) for c in RATIO[col])
+            if num is not None and den is not None:
+                ok = mask & np.isfinite(num) & np.isfinite(den)
+                mine_vals[col] = float(num[ok].mean() / den[ok].mean()) if ok.any() else None
+        elif col in mine.items:
+            mine_vals[col] = S.aggregate(mine.items[col], tab.units)
+    out["rows"][row] = mine_vals
+    return out
 
 
 def by_action(stats: RowStats, tab: Table, cols=("ade", "apd", "acc_moac")) -> dict[str, dict[str, float]]:
@@ -715,11 +866,20 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
                 values, stats_ = summarise_runs(results, tab)
                 row_doc["values"] = values
                 row_doc["by_action"] = by_action(stats_, tab)
+                row_doc["by_group"] = by_group(results, tab)
                 row_doc["lengths"] = {a: M.length_histogram(v, edges) for a, v in sorted(results[0].lengths.items())}
                 row_doc["items"] = results[0].items
+                row_doc["refused"] = {"items": len(tab.items) - results[0].items, "of": len(tab.items),
+                                      "share": 100.0 * (1 - results[0].items / len(tab.items))}
+                flag = does_not_predict(values, int(table["horizon_frames"]))
+                if flag:
+                    row_doc["flag"] = flag
                 store[table["id"]][r.id] = stats_
             row_doc["seconds"] = round(time.time() - r0, 1)
             doc["rows"].append(row_doc)
+        for row_doc in doc["rows"]:
+            if row_doc.get("refused", {}).get("items"):
+                row_doc["paired"] = on_accepted(store[table["id"]], row_doc["id"], tab)
         columns = [c for c, spec in COLUMNS.items() if spec.section and any(c in r.get("values", {}) for r in doc["rows"])]
         doc["columns"] = columns
         doc["extra_columns"] = [c for c in COLUMNS if not COLUMNS[c].section
@@ -731,13 +891,19 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
         tables.append(doc)
 
     from .checks import (claims_tally, comparisons, copying_checks, evaluate_claims, recognition_checks,
-                         sanity_checks, shape_comparison, variant_report)
+                         sanity_checks, served_verdicts, shape_comparison, variant_report)
     sanity = sanity_checks(tables, clf_report, cfg)
     recognition = recognition_checks(tables, clf_report)
     sanity += recognition
     by_table = {t["id"]: t for t in tables}
     claims = evaluate_claims(by_table, store, tabs, recognition)
     copying = copying_checks(by_table, store, tabs)
+    served = served_configs()
+    first_of = {}                                  # a served config's first row is the model as served
+    for r in rows:
+        if r.kind == "model" and r.config in served:
+            first_of.setdefault(r.config, r.id)
+    learned = [rid for config, rid in first_of.items() if method_for(load_config(CONFIGS_DIR / config)).trainable]
     doc = {"format": "motion-futures/results", "version": 2,
            "columns": {c: {"label": v.label, "unit": v.unit, "better": v.better} for c, v in COLUMNS.items()},
            "k": k, "fps": FPS, "training_seeds": cfg["training_seeds"], "sampling_seeds": cfg["sampling_seeds"],
@@ -746,7 +912,7 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
            "models": served_hashes, "classifiers": clf_report,
            "classifier_config": {k2: v for k2, v in cfg["classifier"].items() if k2 != "selection"},
            "sanity": sanity, "claims": claims,
-           "copying": copying,
+           "copying": copying, "served_learned": learned, "verdicts": served_verdicts(copying, learned),
            "shape": shape_comparison(by_table, store, tabs),
            "variants": variant_report(by_table, tabs),
            "data": data_summary(clips),
@@ -763,15 +929,24 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
 
 
 def data_summary(clips: list[Clip]) -> dict:
-    """What the tables are cut from: people, takes and seconds on each side of the split."""
+    """What the tables are cut from and the models learn from: people, takes and seconds on each side of
+    the split, overall and per action (the model card and the Results page read this, never the clips)."""
+    from ..data.balance import RULE as BALANCE_RULE
     test = [c for c in clips if c.split.role == "test"]
     train = [c for c in clips if c.split.role != "test"]
-    return {"fps": FPS, "joints": SKELETON.num_joints, "clips": len(clips), "actions": len({c.action for c in clips}),
-            "heldout_people": sorted({str(c.subject) for c in test}, key=lambda p: (len(p), p)),
-            "heldout_takes": len(test), "heldout_actions": heldout_actions(clips),
-            "heldout_seconds": round(sum(len(c) for c in test) / FPS, 1),
-            "train_people": len({str(c.subject) for c in train}), "train_takes": len(train),
-            "train_seconds": round(sum(len(c) for c in train) / FPS, 1)}
+
+    def side(cs: list[Clip]) -> dict:
+        return {"people": sorted({str(c.subject) for c in cs}, key=lambda p: (len(p), p)), "takes": len(cs),
+                "seconds": round(sum(len(c) for c in cs) / FPS, 1)}
+    actions = {a: {"group": group_of(a), "train": side([c for c in train if c.action == a]),
+                   "test": side([c for c in test if c.action == a])} for a in sorted({c.action for c in clips})}
+    return {"fps": FPS, "joints": SKELETON.num_joints, "clips": len(clips), "actions": len(actions),
+            "heldout_people": side(test)["people"], "heldout_takes": len(test), "heldout_actions": heldout_actions(clips),
+            "heldout_seconds": side(test)["seconds"],
+            "train_people": len(side(train)["people"]), "train_people_list": side(train)["people"],
+            "train_takes": len(train), "train_seconds": side(train)["seconds"],
+            "per_action": actions, "groups": list(GROUPS), "balance": BALANCE_RULE,
+            "train_only_actions": [a for a, v in actions.items() if not v["test"]["takes"]]}
 
 
 def _run_row(r: Row, tab: Table, loaded, cfg: dict, k: int, actions: list[str], ctx: Context,
