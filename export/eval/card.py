@@ -28,24 +28,23 @@ def _fmt(value, unit: str = "") -> str:
     return fmt(value, unit)
 
 
-def _row(doc: dict, table: str, row: str) -> dict | None:
-    t = next((x for x in doc["tables"] if x["id"] == table), None)
-    return next((r for r in (t or {}).get("rows", []) if r["id"] == row and r.get("values")), None)
+def _seconds(x: float) -> str:
+    """Seconds of capture as people read them: 1.7 s, 54.9 s, 1934 s."""
+    return f"{x:.0f}" if x >= 100 else f"{x:.1f}"
 
 
-def _val(doc: dict, table: str, row: str, metric: str) -> float | None:
-    r = _row(doc, table, row)
-    v = (r or {}).get("values", {}).get(metric)
-    return v["mean"] if v else None
-
-
-def copying_tally(doc: dict, table: str = "heldout_2s") -> dict:
-    """How many model rows of `table` beat the nearest training window and the 60-frame repeated cycle."""
-    rows = {c["row"] for c in doc.get("copying", []) if c["table"] == table}
-    beat = lambda base: sum(1 for c in doc.get("copying", []) if c["table"] == table and c["baseline"] == base
-                            and c["status"] == "holds")
-    return {"table": table, "models": len(rows), "beat_nearest": beat("nearest-window"),
-            "beat_cycle": beat("repeat-cycle-60")}
+def copying_tally(doc: dict) -> dict:
+    """Which served learned models are shown to beat each baseline, per held-out table (after Holm): the only
+    tally the card prints. Baselines, ablations and rows that do not predict are never counted."""
+    from .report import _verdict_flag
+    beat: dict[str, dict[str, list[str]]] = {}
+    for v in doc.get("verdicts") or []:
+        if _verdict_flag(doc, v):
+            continue
+        got = beat.setdefault(v["baseline"], {}).setdefault(v["table"], [])
+        if v["status"] == "holds":
+            got.append(v["row"])
+    return {"models": list(doc.get("served_learned") or []), "beat": beat}
 
 
 def recognition_tally(doc: dict) -> dict:
@@ -56,75 +55,125 @@ def recognition_tally(doc: dict) -> dict:
     return {"checks": len(checks), "passed": sum(bool(s["passed"]) for s in checks)}
 
 
-def summary(doc: dict) -> list[str]:
-    """The card's five lines, every number taken from `doc` as the card and the results page print it."""
+def data_line(doc: dict) -> str:
+    """Who the numbers are on and who the models learned from (results.data)."""
     d = doc["data"]
-    lines = [f"Tested on {len(d['heldout_people'])} held-out people (subjects {', '.join(d['heldout_people'])}) "
-             f"whose {d['heldout_takes']} takes ({_fmt(d['heldout_seconds'])} s, {len(d['heldout_actions'])} actions) "
-             f"no model saw; trained on {d['train_people']} other performers ({d['train_takes']} takes)."]
-    t = "heldout_2s"
-    # the served models only: an ablation or variant is a measurement, not what the site runs
-    ranked = sorted((r for r in next((x["rows"] for x in doc["tables"] if x["id"] == t), [])
-                     if r["kind"] == "model" and r["id"] in doc.get("models", {}) and "ade" in r.get("values", {})),
-                    key=lambda r: r["values"]["ade"]["mean"])
-    zero, near = _val(doc, t, "zero-velocity", "ade"), _val(doc, t, "nearest-window", "ade")
-    if ranked:
-        best = ranked[0]
-        lines.append(f"2 s ahead on held-out people the lowest best-of-K ADE (root-relative) of the served models is "
-                     f"{_fmt(best['values']['ade']['mean'])} m ({best['label']}), against {_fmt(zero)} m for zero-velocity and "
-                     f"{_fmt(near)} m for the nearest training window.")
-    c = doc.get("copying_tally") or copying_tally(doc)
-    if c["models"]:
-        rest = c["models"] - c["beat_nearest"]
-        lines.append(f"{c['beat_nearest']} of {c['models']} models beat the nearest training window 2 s ahead"
-                     + (f" ({rest} report memorisation)" if rest else "") + f", {c['beat_cycle']} beat repeating "
-                     "the last cycle of a 60-frame history.")
+    performers = len(d.get("train_people_list") or []) or d["train_people"]
+    return (f"Tested on {len(d['heldout_people'])} held-out people (subjects {', '.join(d['heldout_people'])}) whose "
+            f"{d['heldout_takes']} takes ({_fmt(d['heldout_seconds'])} s, {len(d['heldout_actions'])} actions) no model "
+            f"saw; trained on {d['train_takes']} takes ({_fmt(d['train_seconds'])} s) of {performers} other performers.")
+
+
+def claims_line(doc: dict) -> str:
     k = doc["tally"]
-    lines.append(f"Paper claims on held-out people: {k['holds']} hold, {k['fails']} fail, {k['inconclusive']} "
-                 f"inconclusive, {k.get('no difference', 0)} no difference, {k['insufficient data']} insufficient data, "
-                 f"{k['unusable']} unusable, "
-                 f"{k['not evaluated']} not evaluated; {k['by_construction']} true by construction are not counted.")
+    return (f"Paper claims on held-out people: {k['holds']} hold, {k['fails']} fail, {k['inconclusive']} "
+            f"inconclusive, {k.get('no difference', 0)} no difference, {k['insufficient data']} insufficient data, "
+            f"{k['unusable']} unusable, {k['not evaluated']} not evaluated; {k['by_construction']} true by "
+            "construction are not counted.")
+
+
+def classifiers_line(doc: dict) -> str | None:
     clf, rec = doc["classifiers"], doc.get("recognition_tally") or recognition_tally(doc)
-    if "pose_gru" in clf and "moac" in clf:
-        lines.append(f"The action classifiers reach {_fmt(clf['pose_gru']['test_balanced_accuracy'], '%')}% (pose GRU) "
-                     f"and {_fmt(clf['moac']['test_balanced_accuracy'], '%')}% (MOAC) mean per-action accuracy on "
-                     f"held-out people; the ground truth scores best in {rec['passed']} of {rec['checks']} "
-                     "recognition checks.")
+    if "pose_gru" not in clf or "moac" not in clf:
+        return None
+    return (f"The action classifiers reach {_fmt(clf['pose_gru']['test_balanced_accuracy'], '%')}% (pose GRU) and "
+            f"{_fmt(clf['moac']['test_balanced_accuracy'], '%')}% (MOAC) mean per-action accuracy on held-out people; "
+            f"the ground truth scores best in {rec['passed']} of {rec['checks']} recognition checks.")
+
+
+def summary(doc: dict) -> list[str]:
+    """The card's five lines, every number taken from `doc` as the card and the results page print it: the data,
+    whether each served learned model is shown to beat zero-velocity, the regression GRU and the nearest
+    training window (only they are counted), and the paper claims."""
+    from .report import VERDICT_BASELINES, beaten_line
+    lines = [data_line(doc)] + [x for x in (beaten_line(doc, b) for b in VERDICT_BASELINES) if x]
+    lines.append(claims_line(doc))
+    if len(lines) < 5 and classifiers_line(doc):
+        lines.append(classifiers_line(doc))
     return lines[:5]
 
 
 def _part(p: dict, doc: dict) -> str:
+    """A claim part with the numbers it rests on: both rows on the items both predict, with the count."""
     unit = doc["columns"].get(p["metric"], {}).get("unit", "")
     label = doc["columns"].get(p["metric"], {}).get("label", p["metric"])
-    from .report import status_text
-    if p["a_value"] is None or p["b_value"] is None:
-        return f"{p['a']} vs {p['b']} ({label}, `{p['table']}`): not evaluated"
+    from .report import _holm, status_text
     if p.get("kind") == "trend" and "values" in p:
         return (f"{label} over {p['setting']} {', '.join(_fmt(x) for x in p['settings'])} (`{p['table']}`, on the "
                 f"{p['items']} items every row predicts): " + " → ".join(_fmt(v, unit) for v in p["values"])
-                + f", change over the range {_fmt(p['difference'], unit)}, 2σ {_fmt(p['bar'], unit)}: {status_text(p)}")
-    a, b = p.get("a_paired", p["a_value"]["mean"]), p.get("b_paired", p["b_value"]["mean"])
-    return (f"{p['a']} {_fmt(a, unit)} vs {p['b']} {_fmt(b, unit)} ({label}, `{p['table']}`, on the {p['items']} "
-            f"items both predict, 2σ {_fmt(p['bar'], unit)}): {status_text(p)}")
+                + f", change over the range {_fmt(p['difference'], unit)}, 2σ {_fmt(p['bar'], unit)}{_holm(p)}: "
+                + status_text(p))
+    if p.get("a_paired") is None or p.get("b_paired") is None:
+        return f"{p['a']} vs {p['b']} ({label}, `{p['table']}`): {status_text(p)}"
+    return (f"{p['a']} {_fmt(p['a_paired'], unit)} vs {p['b']} {_fmt(p['b_paired'], unit)} ({label}, `{p['table']}`, "
+            f"on the {p['items']} items both predict, 2σ {_fmt(p['bar'], unit)}{_holm(p)}): {status_text(p)}")
+
+
+def _data(doc: dict) -> list[str]:
+    """Who the models learned from and are tested on, per action (results.data, never the served clips)."""
+    d = doc["data"]
+    train = d.get("train_people_list") or []
+    lines = ["## The data", "",
+             f"- {d['clips']} takes of {d['actions']} actions, {d['joints']} joints in metres at {_fmt(d['fps'])} "
+             "frames per second, in the world frame (the root travels over the floor).",
+             f"- Held out: {len(d['heldout_people'])} people (subjects {', '.join(d['heldout_people'])}) give "
+             f"{d['heldout_takes']} takes ({_seconds(d['heldout_seconds'])} s) of {len(d['heldout_actions'])} actions "
+             f"({', '.join(d['heldout_actions'])}); no model saw them, and every claim rests on them alone.",
+             f"- Training: {len(train) or d['train_people']} other performers"
+             + (f" ({', '.join(train)})" if train else "")
+             + f" give {d['train_takes']} takes ({_seconds(d['train_seconds'])} s)."
+             + (f" Balance: {d['balance']}." if d.get("balance") else "")]
+    if d.get("train_only_actions"):
+        lines.append(f"- Trained on but never tested (no held-out person performs them): "
+                     f"{', '.join(d['train_only_actions'])}; no number here says how the models do on them.")
+    lines.append("- The in-sample table (training people) backs no claim.")
+    per = d.get("per_action") or {}
+    if per:
+        lines += ["", "| action | group | training people | training takes | training s | held-out people | "
+                  "held-out takes | held-out s |", "|---|---|---|---|---|---|---|---|"]
+        for a, x in per.items():
+            tr, te = x["train"], x["test"]
+            lines.append(f"| {a} | {x['group']} | {len(tr['people'])} | {tr['takes']} | {_seconds(tr['seconds'])} | "
+                         f"{len(te['people'])} | {te['takes']} | {_seconds(te['seconds'])} |")
+    return lines + [""]
+
+
+def _served_against_baselines(doc: dict) -> list[str]:
+    from .report import VERDICT_BASELINES, beaten_line, verdict_table
+    table = verdict_table(doc)
+    if not table:
+        return []
+    return (["## The served learned models against the baselines", "",
+             "Best-of-K ADE (root-relative) on held-out people, each model and baseline on the same windows (the "
+             "windows the model accepts), with their count; \"beats\" needs a difference beyond the 2σ bar that "
+             "also passes Holm's correction over the copying comparisons.", ""]
+            + [f"- {x}" for x in (beaten_line(doc, b) for b in VERDICT_BASELINES) if x] + [""] + table + [""])
+
+
+def _not_predicting(doc: dict) -> list[str]:
+    """Rows whose futures are not predictions: marked, and left out of every tally."""
+    from .report import flag_text
+    flagged = [(t["id"], r) for t in doc["tables"] for r in t["rows"] if r.get("flag")]
+    if not flagged:
+        return []
+    return ["## Rows that do not predict", "",
+            "Left out of every tally and comparison count, and never \"within 10%\" of a row that predicts:", ""] \
+        + [f"- {r['label']} (`{tid}`): {flag_text(r['flag'])}." for tid, r in flagged] + [""]
 
 
 def model_card(doc: dict) -> str:
     """The whole card, from the (rounded) results document."""
-    d, clf = doc["data"], doc["classifiers"]
+    clf = doc["classifiers"]
+    learned = set(doc.get("served_learned") or [])
     lines = ["# Model card: motion futures", "",
              "Generated from `public/results.json` by `python -m export evaluate` (`export/eval/card.py`): do not edit "
              "by hand. The site's Model card page reads the same file, and `docs/RESULTS.md` has every table.", "",
              "## In short", ""] + [f"- {s}" for s in doc.get("summary", [])] + [""]
-    lines += ["## The data", "",
-              f"- {d['clips']} clips of {d['actions']} actions, {d['joints']} joints in metres at {_fmt(d['fps'])} "
-              "frames per second, in the world frame (the root travels over the floor).",
-              f"- Split by person: the held-out people ({', '.join(d['heldout_people'])}) give {d['heldout_takes']} "
-              f"takes ({_fmt(d['heldout_seconds'])} s) of {len(d['heldout_actions'])} actions "
-              f"({', '.join(d['heldout_actions'])}); {d['train_people']} other performers give {d['train_takes']} "
-              f"training takes ({_fmt(d['train_seconds'])} s).",
-              "- Claims rest only on actions with held-out people; the in-sample table backs none.", "",
-              "## The models evaluated", ""]
-    lines += [f"- `{mid}` (hash `{h}`)" for mid, h in sorted(doc["models"].items())] + [""]
+    lines += _data(doc)
+    lines += ["## The models evaluated", ""]
+    lines += [f"- `{mid}` (hash `{h}`)" + (": learns from data" if mid in learned else "")
+              for mid, h in sorted(doc["models"].items())] + [""]
+    lines += _served_against_baselines(doc)
     for title in dict.fromkeys(SECTIONS.values()):
         claims = [c for c in doc["claims"] if SECTIONS.get(c["status"]) == title]
         if not claims:
@@ -135,15 +184,7 @@ def model_card(doc: dict) -> str:
             lines.append(f"- **{c['status']}** ({c['paper']}): {c['text']}{why} Numbers: "
                          + "; ".join(_part(p, doc) for p in c["parts"]) + ".")
         lines.append("")
-    memo = [c for c in doc.get("copying", []) if c["baseline"] == "nearest-window"]
-    if memo:
-        lines += ["## Against copying and memorising", "",
-                  "Best-of-K ADE (root-relative) of each model against the nearest training window's future, paired on "
-                  "the windows both predict:", ""]
-        for c in memo:
-            lines.append(f"- **{c['status']}** (`{c['table']}`): {c['label']} {c['verdict']} "
-                         f"(difference {_fmt(c['difference'])} m, 2σ {_fmt(c['bar'])} m).")
-        lines.append("")
+    lines += _not_predicting(doc)
     lines += ["## The classifiers behind the recognition numbers", ""]
     for kind in ("pose_gru", "moac"):
         if kind in clf:
@@ -156,11 +197,15 @@ def model_card(doc: dict) -> str:
             lines.append(f"- {'pass' if s['passed'] else 'FAIL'} (`{s['table']}`): {s['text']}: the ground truth "
                          f"{_fmt(s['measured'])}, the best other {_fmt(s['expected'])}.")
     lines += ["", "## Known limits", "",
-              "- Few people: every number rests on the held-out people above, and each action has few takes; a "
-              "comparison with too few people or takes is reported as insufficient data.",
+              f"- Few people: every number rests on the held-out people above, and each action has few takes; a "
+              f"comparison with fewer than {doc.get('min_people', '?')} held-out people or "
+              f"{doc.get('min_takes', '?')} held-out takes is reported as insufficient data, and a difference below "
+              "its practical minimum as no difference.",
               "- Keyposes refuses histories with too little motion (too few keyposes); its rows say how many windows "
-              "it predicted, and its comparisons are paired on those windows.",
-              "- The recognition numbers are only as good as the classifiers above.", "",
+              "it predicted, and its comparisons are made on exactly those windows.",
+              "- The recognition numbers are only as good as the classifiers above.",
+              "- How lifelike the motion is (speed against the truth's second by second, foot skating, coverage, per "
+              "action group) is in `docs/RESULTS.md`, section \"Motion realism\".", "",
               "## How to cite", "", "Cite the method papers and this project (`CITATION.cff`).", "",
               "```bibtex", CITATIONS.strip(), "```", ""]
     return "\n".join(lines)
@@ -225,7 +270,8 @@ def _matches(token: str, known: list[float]) -> bool:
 
 def card_problems(text: str, doc: dict) -> list[str]:
     """Why the card disagrees with the results (empty when it does not): a number outside code that no value in
-    the results rounds to, or a claim missing, repeated, or written under another status than its own."""
+    the results rounds to; a claim missing, repeated, or written under another status than its own; a served
+    model's verdict not beside its own paired numbers; or a section that finds no data in the results."""
     problems = []
     known = _known(doc)
     for token in sorted(set(NUMBER.findall(_prose(text))), key=float):
@@ -252,13 +298,46 @@ def card_problems(text: str, doc: dict) -> list[str]:
         for other in SECTIONS:
             if other != c["status"] and f"**{other}**" in line:
                 problems.append(f"claim {c['id']} ({c['status']}) is also worded as '{other}'")
-    for c in doc.get("copying", []):
-        if c["baseline"] != "nearest-window":
-            continue
-        lines = [ln for ln in text.splitlines() if f"{c['label']} {c['verdict']}" in ln and f"`{c['table']}`" in ln]
-        if lines and not all(ln.startswith(f"- **{c['status']}**") for ln in lines):
-            problems.append(f"{c['label']} against the nearest window in {c['table']} is not worded as '{c['status']}'")
+    problems += verdict_problems(text, doc)
+    problems += card_gaps(doc)
     return problems
+
+
+def verdict_problems(text: str, doc: dict) -> list[str]:
+    """Each served learned model's verdict against each baseline must be printed beside its own paired numbers
+    (both rows on the same windows, with their count), in the line of its model and table."""
+    from .report import label_for, verdict_cell
+    problems = []
+    lines = text.splitlines()
+    for v in doc.get("verdicts") or []:
+        want = verdict_cell(doc, v)
+        where = [ln for ln in lines if ln.startswith(f"| {label_for(doc, v['row'])} |") and f"(`{v['table']}`)" in ln]
+        if not any(f"| {want} |" in ln for ln in where):
+            problems.append(f"{v['row']} against {v['baseline']} in {v['table']} is not printed beside its paired "
+                            f"numbers ('{want}')")
+    return problems
+
+
+def card_gaps(doc: dict) -> list[str]:
+    """Sections of the card that would find no data in these results (an old or partial results document)."""
+    gaps = []
+    if not (doc.get("data") or {}).get("per_action"):
+        gaps.append("the data section finds no per-action data (results.data.per_action)")
+    if not doc.get("served_learned"):
+        gaps.append("the baselines section finds no served learned models (results.served_learned)")
+    elif not doc.get("verdicts"):
+        gaps.append("the baselines section finds no verdicts (results.verdicts)")
+    have = {t["id"] for t in doc.get("tables", [])}
+    for tid in dict.fromkeys(v["table"] for v in doc.get("verdicts") or []):
+        if tid not in have:
+            gaps.append(f"the baselines section reads table {tid}, which the results do not hold")
+    if not doc.get("summary"):
+        gaps.append("the summary is missing (results.summary)")
+    if not doc.get("claims"):
+        gaps.append("the claims sections find no claims")
+    if not any(k in doc.get("classifiers", {}) for k in ("pose_gru", "moac")):
+        gaps.append("the classifiers section finds no classifier")
+    return gaps
 
 
 def read_results(path: Path) -> dict:

@@ -69,7 +69,8 @@ def status_text(x: dict) -> str:
 
 
 def _holm(p: dict) -> str:
-    return f", p {fmt(p['p'])}, Holm {fmt(p['p_holm'])}" if p.get("p_holm") is not None else ""
+    """The one-sided p and its Holm-adjusted value, when the comparison was counted in a family."""
+    return f", p {fmt(p['p'])}, Holm-adjusted {fmt(p['p_holm'])}" if p.get("p_holm") is not None else ""
 
 
 def trend_text(p: dict) -> str:
@@ -87,21 +88,20 @@ def trend_text(p: dict) -> str:
 
 
 def part_text(p: dict) -> str:
+    """A pair part: both rows' values on the items both predict (never each row's own mean beside the
+    other's), the count, the difference and its bar, p and Holm, and the status."""
     if p.get("kind") == "trend":
         return trend_text(p)
     label = COLUMNS[p["metric"]].label if p["metric"] in COLUMNS else p["metric"]
-    if p["status"] == "not evaluated":
-        return f"{p['a']} vs {p['b']} ({label}, {p['table']}): missing {', '.join(p['missing'])}"
+    if p["status"] == "not evaluated" or p.get("a_paired") is None:
+        missing = f": missing {', '.join(p['missing'])}" if p.get("missing") else ""
+        return f"{p['a']} vs {p['b']} ({label}, {p['table']}){missing}: {status_text(p)}"
     unit = COLUMNS[p["metric"]].unit if p["metric"] in COLUMNS else ""
     other = "" if p["metric_b"] == p["metric"] else f" {COLUMNS[p['metric_b']].label}"
     margin = f", margin {fmt(p['margin'], unit)}" if p.get("margin") else ""
-    paired = ""
-    if p.get("a_paired") is not None and (fmt(p["a_paired"], unit) != fmt(p["a_value"]["mean"], unit)
-                                          or fmt(p["b_paired"], unit) != fmt(p["b_value"]["mean"], unit)):
-        paired = f" on the {p['items']} items both predict: {fmt(p['a_paired'], unit)} vs {fmt(p['b_paired'], unit)};"
-    text = (f"{p['a']} {cell(p['a_value'], unit)} vs {p['b']}{other} {cell(p['b_value'], unit)} "
-            f"({label}, {p['table']};{paired} difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}{margin}"
-            f"{_holm(p)}; {p['people']} people, {p['takes']} takes): {status_text(p)}")
+    text = (f"{p['a']} {fmt(p['a_paired'], unit)} vs {p['b']}{other} {fmt(p['b_paired'], unit)} ({label}, "
+            f"{p['table']}; on the {p['items']} items both predict, {p['people']} people, {p['takes']} takes; "
+            f"difference {fmt(p['difference'], unit)}, 2σ {fmt(p['bar'], unit)}{margin}{_holm(p)}): {status_text(p)}")
     return text + (f" ({p['reason']})" if p.get("reason") else "")
 
 
@@ -109,6 +109,306 @@ def tally_text(t: dict) -> str:
     return (f"{t['holds']} hold, {t['fails']} fail, {t['inconclusive']} inconclusive, {t.get('no difference', 0)} no "
             f"difference, {t['insufficient data']} insufficient data, {t['unusable']} unusable, {t['not evaluated']} "
             f"not evaluated; {t['by_construction']} true by construction (not counted)")
+
+
+def windows_text(r: dict, t: dict) -> str:
+    """A row's windows: how many of the table's it predicts, and its refusal rate when it refuses some."""
+    of = t.get("items") or t.get("windows") or 0
+    n, out = r.get("items", 0), refused(r, t)
+    return f"{n}/{of}" + (f" ({fmt(100.0 * out / of, '%')}% refused)" if out and of else "")
+
+
+def counted(n: int, one: str, many: str = "") -> str:
+    """"1 window", "9 windows", "1 person", "3 people"."""
+    return f"{n} {one if n == 1 else many or one + 's'}"
+
+
+def flag_text(flag: str) -> str:
+    return f"does not predict: {flag}"
+
+
+def row_label(r: dict) -> str:
+    """A row's label, marked when its futures are not predictions (harness.does_not_predict)."""
+    return r["label"] + (f" — **{flag_text(r['flag'])}**" if r.get("flag") else "")
+
+
+def _table_of(doc: dict, tid: str) -> dict | None:
+    return next((t for t in doc["tables"] if t["id"] == tid), None)
+
+
+def _row_of(t: dict | None, rid: str) -> dict | None:
+    return next((r for r in (t or {}).get("rows", []) if r["id"] == rid), None)
+
+
+def ahead(doc: dict, tid: str) -> str:
+    """How far ahead a table predicts, in seconds ("2 s")."""
+    t = _table_of(doc, tid)
+    return f"{t['horizon_frames'] / doc['fps']:g} s" if t else tid
+
+
+# --- the served learned models against the baselines (Evaluation v3, item 6) ----------------------
+
+VERDICT_BASELINES = ("zero-velocity", "regression-gru", "nearest-window")
+# what a copying status says of a model against a baseline, after Holm
+VERDICT_WORDS = {"holds": "beats", "no difference": "is no different from", "fails": "is worse than",
+                 "inconclusive": "is not shown to beat", "insufficient data": "is not shown to beat",
+                 "not evaluated": "was not compared with"}
+
+
+def _verdict_flag(doc: dict, v: dict) -> str:
+    return (_row_of(_table_of(doc, v["table"]), v["row"]) or {}).get("flag", "")
+
+
+def verdict_numbers(doc: dict, v: dict) -> str:
+    """The numbers a verdict rests on: both rows' ADE on the same windows, with their count."""
+    if v.get("a_paired") is None:
+        return "no windows both predict"
+    c = next((x for x in doc.get("copying", []) if (x["row"], x["table"], x["baseline"]) ==
+              (v["row"], v["table"], v["baseline"])), {})
+    holm = f", Holm-adjusted p {fmt(c['p_holm'])}" if c.get("p_holm") is not None else ""
+    return (f"{fmt(v['a_paired'], 'm')} m against {fmt(v['b_paired'], 'm')} m on the same {v['items']} windows, "
+            f"difference {fmt(v['difference'], 'm')} m, 2σ {fmt(v['bar'], 'm')} m{holm}")
+
+
+def verdict_cell(doc: dict, v: dict) -> str:
+    """One verdict beside its paired numbers: "beats (holds): 0.700 m against 0.800 m on the same 97 windows, …"."""
+    flag = _verdict_flag(doc, v)
+    if flag:
+        return flag_text(flag)
+    return f"{VERDICT_WORDS.get(v['status'], v['status'])} ({v['status']}): {verdict_numbers(doc, v)}"
+
+
+def label_for(doc: dict, rid: str) -> str:
+    """A row's label wherever the results name it (a table, or the rows not evaluated), else its id."""
+    for t in doc["tables"]:
+        r = _row_of(t, rid)
+        if r:
+            return r["label"]
+    return next((x["label"] for x in doc.get("skipped", []) if x["row"] == rid), rid)
+
+
+def _baseline_name(doc: dict, base: str) -> str:
+    """"zero-velocity", "the regression GRU", "the nearest training window": a baseline inside a sentence."""
+    name = label_for(doc, base)
+    return name.lower() if name.lower().startswith("zero") else f"the {name[0].lower()}{name[1:]}"
+
+
+def verdict_table(doc: dict) -> list[str]:
+    """Each served learned model per held-out table, against each baseline, its verdict beside its numbers."""
+    verdicts = doc.get("verdicts") or []
+    if not verdicts:
+        return []
+    bases = [b for b in VERDICT_BASELINES if any(v["baseline"] == b for v in verdicts)]
+    lines = ["| served model | ahead | " + " | ".join(f"vs {_baseline_name(doc, b)}" for b in bases) + " |",
+             "|---|---|" + "---|" * len(bases)]
+    for row in dict.fromkeys(v["row"] for v in verdicts):
+        for tid in dict.fromkeys(v["table"] for v in verdicts if v["row"] == row):
+            got = {v["baseline"]: v for v in verdicts if v["row"] == row and v["table"] == tid}
+            lines.append(f"| {label_for(doc, row)} | {ahead(doc, tid)} (`{tid}`) | "
+                         + " | ".join(verdict_cell(doc, got[b]) if b in got else "— (itself)" for b in bases) + " |")
+    return lines
+
+
+def beaten_line(doc: dict, base: str) -> str | None:
+    """In plain words, which served learned models are shown to beat one baseline, and at which horizons."""
+    vs = [v for v in doc.get("verdicts") or [] if v["baseline"] == base]
+    if not vs:
+        return None
+    horizons = " or ".join(ahead(doc, t) for t in dict.fromkeys(v["table"] for v in vs))
+    beats, rest, missing, flagged = [], [], [], []
+    for row in dict.fromkeys(v["row"] for v in vs):
+        mine = [v for v in vs if v["row"] == row]
+        won = [ahead(doc, v["table"]) for v in mine if v["status"] == "holds"]
+        label = label_for(doc, row)
+        if any(_verdict_flag(doc, v) for v in mine):
+            flagged.append(label)
+        elif won:
+            beats.append(f"{label} at {' and '.join(won)}")
+        elif all(v["status"] == "not evaluated" for v in mine):
+            missing.append(label)
+        else:
+            rest.append(label)
+    name = _baseline_name(doc, base)
+    how = "best-of-K ADE on the same windows, after Holm"
+    if beats:
+        text = f"Shown to beat {name} ({how}): {'; '.join(beats)}"
+        text += f"; not shown at {horizons}: {', '.join(rest)}" if rest else ""
+    else:
+        text = f"No served learned model is shown to beat {name} at {horizons} ({how}"
+        text += f"; compared: {', '.join(rest)})" if rest else ")"
+    text += f"; not evaluated: {', '.join(missing)}" if missing else ""
+    return text + (f"; not scored, as they do not predict: {', '.join(flagged)}" if flagged else "") + "."
+
+
+def _verdicts(doc: dict) -> list[str]:
+    table = verdict_table(doc)
+    if not table:
+        return []
+    n = (doc.get("comparisons") or {}).get("copying")
+    learned = ", ".join(f"`{r}`" for r in doc.get("served_learned", []))
+    return ["## Served learned models against the baselines", "",
+            f"Each model the site serves that learns from data ({learned}) against standing still (zero-velocity), "
+            "the regression GRU and the nearest training window's future, on held-out people: best-of-K ADE "
+            "(root-relative) of both rows on the same windows (those the model accepts), with their count. A model "
+            "**beats** a baseline when its ADE is lower by more than the 2σ bar and the comparison passes Holm's "
+            f"correction over the {'' if n is None else f'{n} '}copying comparisons.", ""]\
+        + [f"- {x}" for x in (beaten_line(doc, b) for b in VERDICT_BASELINES) if x] + [""] + table + [""]
+
+
+# --- motion realism (Evaluation v3, items 2 and 5) --------------------------------------------------
+
+def realism_rows(doc: dict, t: dict) -> list[dict]:
+    """The rows a realism table shows: the ground truth, the baselines and the served models."""
+    return [r for r in t["rows"] if r.get("values") and not r.get("skipped")
+            and (r["kind"] in ("oracle", "baseline") or (r["kind"] == "model" and r["id"] in doc["models"]))]
+
+
+def _per_second(t: dict, prefix: str) -> list[str]:
+    return [c for c in t["columns"] if c.startswith(prefix)]
+
+
+def refused(r: dict, t: dict) -> int:
+    """How many of the table's windows a row refuses (older results carry only its items)."""
+    of = t.get("items") or t.get("windows") or 0
+    return (r.get("refused") or {}).get("items", of - r.get("items", of))
+
+
+def truth_beside(t: dict, r: dict, col: str) -> str:
+    """The ground truth's value of `col` on exactly the windows `r` predicts: the oracle row's when `r`
+    predicts them all, its `paired` value when it refuses some, "—" when the results do not hold that."""
+    if r["kind"] == "oracle":
+        return "—"
+    if not refused(r, t):
+        return cell((_row_of(t, "oracle") or {}).get("values", {}).get(col), COLUMNS[col].unit)
+    x = ((r.get("paired") or {}).get("rows", {}).get("oracle") or {}).get(col)
+    return fmt(x, COLUMNS[col].unit) if x is not None else "—"
+
+
+def calibrated(r: dict) -> str:
+    """The share of windows a calibrated sampler of K futures leaves outside: 100/(K+1)."""
+    k = r.get("k") or 1
+    return fmt(100.0 / (k + 1), "%") if k > 1 else "—"
+
+
+def _realism_table(doc: dict, t: dict) -> list[str]:
+    rows = realism_rows(doc, t)
+    joint, root = _per_second(t, "speed_ratio_s"), _per_second(t, "root_ratio_s")
+    j = doc.get("data", {}).get("joints", 18)
+    v = lambda r, c: cell(r["values"].get(c), COLUMNS[c].unit)
+    head = lambda *names: ["| row | windows | " + " | ".join(names) + " |", "|---|---|" + "---|" * len(names)]
+    line = lambda r, cells: f"| {row_label(r)} | {windows_text(r, t)} | " + " | ".join(cells) + " |"
+    out = [f"### {t['title']} (`{t['id']}`)", "",
+           f"{t['items']} windows from {t['takes']} takes of {len(t['people'])} people. Every value is over the "
+           "windows the row predicts (its count beside it); the ground truth's value beside a row is on those same "
+           "windows.", "",
+           f"Error per joint (cm) beside the field's whole-pose ADE and FDE (m): the whole-pose L2 is about √{j} × "
+           f"the per-joint distance for {j} joints.", ""]
+    out += head("per joint, best of K (cm)", "per joint at the horizon (cm)", "ADE best of K (m)", "FDE best of K (m)")
+    out += [line(r, [v(r, "mpjpe_cm"), v(r, "mpjpe_f_cm"), v(r, "ade"), v(r, "fde")]) for r in rows] + [""]
+    if joint or root:
+        out += ["Speed against the truth's, second by second: the prediction's mean speed over the truth's on the "
+                "same windows (1 is the truth's speed; 0 stands still).", ""]
+        out += head(*[f"joints, second {c.rsplit('s', 1)[1]} (×)" for c in joint],
+                    *[f"root, second {c.rsplit('s', 1)[1]} (×)" for c in root])
+        out += [line(r, [v(r, c) for c in joint + root]) for r in rows] + [""]
+    out += ["Following the history, feet, coverage and spread: ρ is Spearman's between the history's joint speed and "
+            "the first predicted second's over the windows (the truth's own ρ beside it); skating is the median "
+            "speed of a foot in contact (the captures' beside it); a calibrated sampler of K futures leaves the truth "
+            "outside every sample in 100/(K+1)% of windows, and the audit's rule (farther from the samples' mean than "
+            "every sample) is reported beside it; full length is the share of samples lasting the whole horizon "
+            "(WAT's stop can end them early).", ""]
+    out += head("ρ", "truth's ρ", "skating (m/s)", "captures' skating (m/s)", "truth outside (%)",
+                "calibrated 100/(K+1) (%)", "outside, the audit's rule (%)", "spread at the last frame (cm)",
+                "full length (%)")
+    out += [line(r, [v(r, "follow"), truth_beside(t, r, "follow"), v(r, "skate"), truth_beside(t, r, "skate"),
+                     v(r, "outside"), calibrated(r), v(r, "outside_naive"), v(r, "spread_cm"), v(r, "full")])
+            for r in rows] + [""]
+    if any(c in r["values"] for r in rows for c in ("pskl_gp", "pskl_pg", "cmd")):
+        out += ["Distributions: PSKL both ways (Keyposes sec. 4.3) and CMD (BeLFusion), each row's futures against the "
+                "captured futures of the windows it predicts.", ""]
+        out += head(*[label_of(c) for c in ("pskl_gp", "pskl_pg", "cmd")])
+        out += [line(r, [v(r, c) for c in ("pskl_gp", "pskl_pg", "cmd")]) for r in rows] + [""]
+    return out + _on_accepted(doc, t, rows) + _realism_groups(doc, t, rows)
+
+
+def _on_accepted(doc: dict, t: dict, rows: list[dict]) -> list[str]:
+    """A row that refuses windows beside the baselines and the truth on exactly the windows it accepts."""
+    out = []
+    for r in rows:
+        paired = r.get("paired") or {}
+        if not paired.get("rows"):
+            continue
+        order = [r["id"], *[x for x in paired["rows"] if x != r["id"]]]
+        cols = [c for c in COLUMNS if any(c in paired["rows"][x] for x in order)]
+        share = fmt(100.0 * refused(r, t) / t["items"], "%")
+        out += [f"{r['label']} predicts {paired['items']} of the {t['items']} windows ({share}% refused); on exactly "
+                "those windows, beside the truth and the baselines:", "",
+                "| row | " + " | ".join(label_of(c) for c in cols) + " |", "|---|" + "---|" * len(cols)]
+        for x in order:
+            label = (_row_of(t, x) or {"label": x})["label"]
+            out.append(f"| {label} | " + " | ".join(fmt(paired["rows"][x].get(c), COLUMNS[c].unit) for c in cols)
+                       + " |")
+        out.append("")
+    return out
+
+
+def _group_windows(r: dict, g: dict) -> str:
+    """A row's windows in an action group: the items of its per-item values there, of the group's."""
+    n = next((g["values"][c]["n"] for c in ("mpjpe_cm", "ade", "length") if c in g["values"]), 0)
+    return f"{n}/{g['items']}"
+
+
+def _realism_groups(doc: dict, t: dict, rows: list[dict]) -> list[str]:
+    """The same measures per action group, each group over its own windows (means; the bars are in results.json)."""
+    order = doc.get("data", {}).get("groups") or list(dict.fromkeys(g for r in rows for g in r.get("by_group", {})))
+    joint, root = _per_second(t, "speed_ratio_s"), _per_second(t, "root_ratio_s")
+    oracle = _row_of(t, "oracle") or {}
+    out = []
+    for name in order:
+        have = [r for r in rows if name in r.get("by_group", {})]
+        if not have:
+            continue
+        g0 = have[0]["by_group"][name]
+        truth = (oracle.get("by_group") or {}).get(name, {}).get("values", {})
+        jump = name == "jump"
+        out += [f"*{name}*: {counted(g0['items'], 'window')}, {counted(g0['people'], 'person', 'people')}, "
+                f"{counted(g0['takes'], 'take')}.", "",
+                "| row | windows | per joint (cm) | per joint at the horizon (cm) | ADE (m) | joint speed / truth's, "
+                "by second (×) | root speed / truth's, by second (×) | ρ | truth's ρ | skating (m/s) | captures' "
+                "skating (m/s) | truth outside (%) | calibrated (%) | spread (cm) | full length (%) |"
+                + (" hip range (m) | captures' hip range (m) |" if jump else ""),
+                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|" + ("---|---|" if jump else "")]
+        for r in have:
+            g = r["by_group"][name]
+            m = lambda c: fmt(g["values"][c]["mean"], COLUMNS[c].unit) if c in g["values"] else "—"
+            whole = _group_windows(r, g) == f"{g['items']}/{g['items']}"
+            beside = lambda c: "—" if r["kind"] == "oracle" or not whole or c not in truth \
+                else fmt(truth[c]["mean"], COLUMNS[c].unit)
+            cells = [m("mpjpe_cm"), m("mpjpe_f_cm"), m("ade"), " · ".join(m(c) for c in joint) or "—",
+                     " · ".join(m(c) for c in root) or "—", m("follow"), beside("follow"), m("skate"), beside("skate"),
+                     m("outside"), calibrated(r), m("spread_cm"), m("full")]
+            cells += [m("hip_range"), beside("hip_range")] if jump else []
+            out.append(f"| {row_label(r)} | {_group_windows(r, g)} | " + " | ".join(cells) + " |")
+        out.append("")
+    if out:
+        out = ["By action group (each group over its own windows; means, their bars are in `results.json`; the "
+               "truth's value beside a row only where the row predicts every window of the group; the hip's vertical "
+               "range is read for jump):", ""] + out
+    return out
+
+
+def _realism(doc: dict) -> list[str]:
+    tables = [t for t in doc["tables"] if t["truth"] and not t.get("in_sample")
+              and any(COLUMNS[c].section == "realism" for c in t["columns"] if c in COLUMNS)]
+    if not tables:
+        return []
+    lines = ["## Motion realism", "",
+             "Does the motion look like people's? For every served model and baseline, and the ground truth (its "
+             "values are the captured motion's own), on held-out people. A row that refuses windows says how many, "
+             "and is set beside the baselines and the truth on exactly the windows it accepts.", ""]
+    for t in tables:
+        lines += _realism_table(doc, t)
+    return lines
 
 
 # The practical minimum (stats.practical_minimum), in words.
@@ -144,35 +444,48 @@ def _claims(doc: dict) -> list[str]:
 COPY_WORDS = {"holds": "beats", "no difference": "no different from"}
 
 
+COPY_COLUMNS = (("nearest-window", "vs nearest training window"), ("own", "vs repeat last cycle (own history)"),
+                ("repeat-cycle-60", "vs repeat last cycle (60 frames)"), ("zero-velocity", "vs zero-velocity"),
+                ("regression-gru", "vs regression GRU"))
+
+
+def _copy_cell(c: dict | None) -> str:
+    if not c:
+        return "—"
+    return (f"{fmt(c['difference'], 'm')} m, 2σ {fmt(c['bar'], 'm')}{_holm(c)}: "
+            f"{COPY_WORDS.get(c['status'], 'does not beat')} ({c['status']})")
+
+
 def _copying(doc: dict) -> list[str]:
     if not doc.get("copying"):
         return []
     lines = ["## Copying and memorising", "",
              "Every model against the baselines that copy the history (repeat its last cycle) and memorise the "
-             "training people (the nearest training window's future), on best-of-K ADE (root-relative), paired on the "
-             "windows both predict. A model that does not beat the nearest training window on held-out people reports "
-             "memorisation; one that does not beat repeating the last cycle reports copying. "
-             + _copying_rule(doc), ""]
+             "training people (the nearest training window's future), and against standing still and the regression "
+             "GRU, on best-of-K ADE (root-relative), paired on the windows both predict (their count in the windows "
+             "column). A model that does not beat the nearest training window on held-out people reports "
+             "memorisation; one that does not beat repeating the last cycle reports copying. " + _copying_rule(doc), ""]
     by_table: dict[str, dict[str, dict[str, dict]]] = {}
-    keys = {"nearest-window": "nearest", "repeat-cycle-60": "long", "zero-velocity": "zero"}
     for c in doc["copying"]:
-        by_table.setdefault(c["table"], {}).setdefault(c["label"], {})[keys.get(c["baseline"], "own")] = c
+        key = c["baseline"] if c["baseline"] in dict(COPY_COLUMNS) else "own"
+        by_table.setdefault(c["table"], {}).setdefault(c["label"], {})[key] = c
     for tid, rows in by_table.items():
+        keys = [(k, h) for k, h in COPY_COLUMNS if any(k in cs for cs in rows.values())]
         lines += [f"Table `{tid}` (ADE difference model − baseline, its 2σ bar, and the verdict):", "",
-                  "| model | vs nearest training window | vs repeat last cycle (own history) "
-                  "| vs repeat last cycle (60 frames) | vs zero-velocity |", "|---|---|---|---|---|"]
+                  "| model | windows | " + " | ".join(h for _, h in keys) + " |", "|---|---|" + "---|" * len(keys)]
         for label, cs in rows.items():
-            cells = []
-            for key in ("nearest", "own", "long", "zero"):
-                c = cs.get(key)
-                cells.append("—" if not c else f"{fmt(c['difference'], 'm')} m, 2σ {fmt(c['bar'], 'm')}: "
-                                               f"{COPY_WORDS.get(c['status'], 'does not beat')} ({c['status']})")
-            lines.append(f"| {label} | " + " | ".join(cells) + " |")
+            n = "/".join(str(x) for x in dict.fromkeys(c["items"] for c in cs.values()))
+            lines.append(f"| {label} | {n} | " + " | ".join(_copy_cell(cs.get(k)) for k, _ in keys) + " |")
         lines.append("")
     memo = [c for c in doc["copying"] if c["baseline"] == "nearest-window" and c["status"] != "holds"]
     if memo:
         lines += ["Not beating the nearest training window (reporting memorisation): "
                   + "; ".join(f"{c['label']} in `{c['table']}` ({c['status']})" for c in memo) + ".", ""]
+    unscored = [(t["id"], r) for t in doc["tables"] if t["truth"] and not t.get("in_sample")
+                for r in t["rows"] if r.get("flag") and r["kind"] == "model"]
+    if unscored:
+        lines += ["Not scored here, as their futures are not predictions: "
+                  + "; ".join(f"{r['label']} in `{tid}` ({flag_text(r['flag'])})" for tid, r in unscored) + ".", ""]
     return lines
 
 
@@ -184,18 +497,31 @@ def _copying_rule(doc: dict) -> str:
             "(1 mm or 1% of the baseline's ADE) is **no different from**.")
 
 
+def _shape_windows(doc: dict, s: dict) -> str:
+    t = _table_of(doc, s["table"]) or {"items": 0, "rows": []}
+    return " / ".join(windows_text(_row_of(t, x) or {"items": 0}, t) for x in (s["with"], s["without"]))
+
+
+def _within(s: dict) -> str:
+    """"yes"/"no", and why never "yes" for a row that does not predict."""
+    return ("yes" if s["within"] else "no") + (f" ({flag_text(s['flag'])})" if s.get("flag") else "")
+
+
 def _shape(doc: dict) -> list[str]:
     if not doc.get("shape"):
         return []
     lines = ["## With and without the shape terms (issue 17)", "",
              "Each stochastic model against its ablation without the seam layer, fixed bone lengths and floor term: "
              f"APD and best-of-K ADE, and whether the model without them is within "
-             f"{round(100 * doc['shape'][0]['tolerance'])}% of the model with them. A measurement, not a claim.", "",
-             "| model | table | metric | with | without | without / with | within |", "|---|---|---|---|---|---|---|"]
+             f"{round(100 * doc['shape'][0]['tolerance'])}% of the model with them (never, when a row does not "
+             "predict). A measurement, not a claim; each row's windows are beside it.", "",
+             "| model | table | windows (with / without) | metric | with | without | without / with | within |",
+             "|---|---|---|---|---|---|---|---|"]
     for s in doc["shape"]:
         unit = COLUMNS[s["metric"]].unit
-        lines.append(f"| {s['with']} | {s['table']} | {COLUMNS[s['metric']].label} | {cell(s['with_value'], unit)} | "
-                     f"{cell(s['without_value'], unit)} | {fmt(s['ratio'])} | {'yes' if s['within'] else 'no'} |")
+        lines.append(f"| {s['with']} | {s['table']} | {_shape_windows(doc, s)} | {COLUMNS[s['metric']].label} | "
+                     f"{cell(s['with_value'], unit)} | {cell(s['without_value'], unit)} | {fmt(s['ratio'])} | "
+                     f"{_within(s)} |")
     return lines + [""]
 
 
@@ -204,14 +530,16 @@ def _comparisons(doc: dict) -> list[str]:
     from .rows import COMPARISONS
     out = []
     by_table = {t["id"]: {r["id"]: r for r in t["rows"] if r.get("values")} for t in doc["tables"]}
+    by_doc = {t["id"]: t for t in doc["tables"]}
     for c in COMPARISONS:
         blocks = []
         for tid in c.tables:
             shown = [r for r in (by_table.get(tid, {}).get(x) for x in c.rows) if r]
             if len(shown) < 2:
                 continue
-            blocks += [f"Table `{tid}`:", "", "| metric | " + " | ".join(r["label"] for r in shown) + " |",
-                       "|---|" + "---|" * len(shown)]
+            blocks += [f"Table `{tid}`:", "", "| metric | " + " | ".join(row_label(r) for r in shown) + " |",
+                       "|---|" + "---|" * len(shown), "| windows | " + " | ".join(windows_text(r, by_doc[tid])
+                                                                         for r in shown) + " |"]
             for m in c.metrics:
                 if any(m in r["values"] for r in shown):
                     blocks.append(f"| {label_of(m)} | " + " | ".join(cell(r["values"].get(m), COLUMNS[m].unit)
@@ -326,7 +654,7 @@ def _table(doc: dict, t: dict) -> list[str]:
         lines += [f"**{title}**", "", "| row | windows | runs | " + " | ".join(label_of(c) for c in cols) + " |",
                   "|---|---|---|" + "---|" * len(cols)]
         for r in rows:
-            lines.append(f"| {r['label']} | {r.get('items', 0)}/{t['items']} | {r.get('runs', 0)} | "
+            lines.append(f"| {row_label(r)} | {windows_text(r, t)} | {r.get('runs', 0)} | "
                          + " | ".join(cell(r.get("values", {}).get(c), COLUMNS[c].unit) for c in cols) + " |")
         lines.append("")
     if t.get("mmade") and any("mmade_half" in r.get("values", {}) for r in rows):
@@ -334,7 +662,7 @@ def _table(doc: dict, t: dict) -> list[str]:
                   "| row | MMADE ½ | MMADE | MMADE 2× | MMFDE ½ | MMFDE | MMFDE 2× |", "|---|---|---|---|---|---|---|"]
         for r in rows:
             v = r.get("values", {})
-            lines.append(f"| {r['label']} | " + " | ".join(cell(v.get(c), "m") for c in (
+            lines.append(f"| {row_label(r)} | " + " | ".join(cell(v.get(c), "m") for c in (
                 "mmade_half", "mmade", "mmade_double", "mmfde_half", "mmfde", "mmfde_double")) + " |")
         lines.append("")
     acts = t["actions"]
@@ -343,7 +671,7 @@ def _table(doc: dict, t: dict) -> list[str]:
                   "| row | " + " | ".join(acts) + " |", "|---|" + "---|" * len(acts)]
         for r in rows:
             per = r.get("by_action", {}).get("ade", {})
-            lines.append(f"| {r['label']} | " + " | ".join(fmt(per.get(a)) for a in acts) + " |")
+            lines.append(f"| {row_label(r)} | " + " | ".join(fmt(per.get(a)) for a in acts) + " |")
         lines.append("")
     for r in t["rows"]:
         if r.get("skipped"):
@@ -377,7 +705,8 @@ def markdown(doc: dict) -> str:
     lines += [f"- `{mid}`: `{h}`" for mid, h in sorted(doc["models"].items())] + [""]
     if doc.get("summary"):
         lines += ["## In short", ""] + [f"- {s}" for s in doc["summary"]] + [""]
-    lines += _claims(doc) + _copying(doc) + _shape(doc) + _rows(doc) + _comparisons(doc) + _variants(doc) + _sanity(doc)
+    lines += _verdicts(doc) + _claims(doc) + _copying(doc) + _shape(doc) + _realism(doc) + _rows(doc)
+    lines += _comparisons(doc) + _variants(doc) + _sanity(doc)
     lines += _classifiers(doc)
     for t in sorted(doc["tables"], key=lambda t: bool(t.get("in_sample"))):
         lines += _table(doc, t)
