@@ -77,7 +77,7 @@ describe('results.json', () => {
       if (t.truth) expect(t.history_frames).toBeGreaterThan(0);
       expect(t.k).toBeGreaterThan(0);
     }
-    const statuses = ['holds', 'fails', 'inconclusive', 'insufficient data', 'unusable', 'not evaluated', 'by construction'];
+    const statuses = ['holds', 'fails', 'inconclusive', 'no difference', 'insufficient data', 'unusable', 'not evaluated', 'by construction'];
     expect(doc.claims.every((c) => statuses.includes(c.status))).toBe(true);
   });
 
@@ -101,14 +101,61 @@ describe('claim parts', async () => {
   const base = { table: 'heldout_2s', a: 'wat-rnn', b: 'zero-velocity', metric: 'ade', metric_b: 'ade', direction: 'less', missing: [],
     a_value: { mean: 0.7, std: 0.03, n: 3 }, b_value: { mean: 0.8, std: 0.05, n: 1 }, difference: -0.1, bar: 0.04, people: 6, takes: 19, items: 70 };
 
-  it('state the numbers, the bar, the people and takes and the status', () => {
-    const t = partText(doc, { ...base, status: 'holds', a_paired: 0.7, b_paired: 0.8 });
-    expect(t).toBe('wat-rnn 0.700 ± 0.030 vs zero-velocity 0.800 ± 0.050 (ADE, heldout_2s; difference -0.100, 2σ 0.040; 6 people, 19 takes): holds');
+  it('state both rows on the items both predict, the count, the bar, p and Holm, the people and takes and the status', () => {
+    const t = partText(doc, { ...base, status: 'holds', a_paired: 0.7, b_paired: 0.8, p: 0.001, p_holm: 0.02 });
+    expect(t).toBe('wat-rnn 0.700 vs zero-velocity 0.800 (ADE, heldout_2s; on the 70 items both predict, 6 people, 19 takes; difference -0.100, 2σ 0.040, p 1.0e-3, Holm-adjusted 0.020): holds');
   });
 
-  it('give the paired means when a row predicted fewer windows, and the reason of an unusable part', () => {
-    const t = partText(doc, { ...base, status: 'unusable', a_paired: 0.65, b_paired: 0.8, items: 40, reason: 'the classifier failed its check' });
-    expect(t).toContain('on the 40 items both predict: 0.650 vs 0.800;');
-    expect(t).toMatch(/: unusable \(the classifier failed its check\)$/);
+  it('never print a row\'s own mean beside the other\'s when it predicted fewer windows; an unusable part says what the data would say', () => {
+    const t = partText(doc, { ...base, status: 'unusable', data_status: 'inconclusive', a_paired: 0.65, b_paired: 0.82, items: 40, reason: 'the classifier failed its check' });
+    expect(t).toContain('wat-rnn 0.650 vs zero-velocity 0.820 (ADE, heldout_2s; on the 40 items both predict');
+    expect(t).not.toContain('0.700');
+    expect(t).toMatch(/: unusable; the data would say: inconclusive \(the classifier failed its check\)$/);
+  });
+});
+
+describe('Evaluation v3 on the page (a results document from the harness: tests/fixtures/results_v3_tiny.json)', async () => {
+  const { rulesText, statusClass } = await import('../../web/src/results/render');
+  const { windowsText, rowLabel } = await import('../../web/src/results/rows');
+  const { beatenLine, verdictGrid, verdictText, labelFor } = await import('../../web/src/results/verdicts');
+  const doc = parseResults(JSON.parse(readFileSync(fileURLToPath(new URL('../fixtures/results_v3_tiny.json', import.meta.url)), 'utf8')));
+
+  it('prints every verdict beside its own paired numbers and their count', () => {
+    const { lines } = verdictGrid(doc);
+    const shown = lines.flatMap((l) => l.cells).filter((v) => v !== null);
+    expect(shown.length).toBe(doc.verdicts!.length);
+    for (const v of doc.verdicts!) {
+      const text = verdictText(doc, v);
+      if (v.a_paired === null) { expect(text).toMatch(/no windows both predict$/); continue; }
+      expect(text).toContain(`(${v.status}): ${fmt(v.a_paired, 'm')} m against ${fmt(v.b_paired, 'm')} m on the same ${v.items} windows`);
+    }
+  });
+
+  it('says plainly which served learned models beat each baseline, counting no baseline or ablation', () => {
+    const line = beatenLine(doc, 'zero-velocity')!;
+    expect(line.startsWith('No served learned model is shown to beat zero-velocity at 1 s or 2 s')).toBe(true);
+    const one = { ...doc, verdicts: doc.verdicts!.map((v) => (v.row === 'keyposes' && v.table === 'heldout_2s' && v.baseline === 'zero-velocity' ? { ...v, status: 'holds' } : v)) };
+    expect(beatenLine(one, 'zero-velocity')).toMatch(/^Shown to beat zero-velocity .*: Keyposes \(T = 0\.3, refined: served\) at 2 s; not shown/);
+    const learned = new Set(doc.served_learned!.map((r) => labelFor(doc, r)));
+    expect(learned.has('Zero-velocity')).toBe(false);
+    expect(beatenLine(doc, 'regression-gru')).not.toContain('Regression GRU,');   // never against itself
+  });
+
+  it('states the rules with the document\'s own minimums, Holm and the comparison counts, and "no difference" has its badge', () => {
+    const text = rulesText(doc);
+    expect(text).toContain(`fewer than ${doc.min_people} held-out people or ${doc.min_takes} held-out takes`);
+    expect(text).toContain(`${doc.comparisons!.claims} claim parts; ${doc.comparisons!.copying} copying comparisons`);
+    expect(text).toContain('Holm');
+    expect(rulesText({ ...doc, min_people: undefined, min_takes: undefined })).not.toMatch(/fewer than \d/);   // no assumed numbers
+    expect(statusClass('no difference')).toBe('status-nodifference');
+    expect(new Set(['holds', 'fails', 'inconclusive', 'no difference', 'unusable'].map(statusClass)).size).toBe(5);
+  });
+
+  it('gives a refusing row its refusal rate and marks a row that does not predict', () => {
+    const t = doc.tables.find((x) => x.id === 'heldout_2s')!;
+    const kp = t.rows.find((r) => r.id === 'keyposes')!;
+    expect(windowsText(kp, t)).toBe(`${kp.items}/${t.items} (${fmt(100 * kp.refused!.items / t.items!, '%')}% refused)`);
+    expect(windowsText(t.rows.find((r) => r.id === 'oracle')!, t)).toBe(`${t.items}/${t.items}`);
+    expect(rowLabel({ ...kp, flag: 'the output guard cuts 66% of its samples' })).toBe(`${kp.label} — does not predict: the output guard cuts 66% of its samples`);
   });
 });

@@ -1,7 +1,7 @@
 // The shape of public/results.json (written by export/eval/report.py) and a check that names
 // what is missing, so a stale or broken file gives a readable message on the page.
 
-/** mean over runs ± std: the cluster bootstrap over takes and the seed std (over runs) combined. */
+/** mean over runs ± std: the cluster bootstrap (people, then takes within people) and the seed std (over runs) combined. */
 export interface Stat { mean: number; std: number; n: number; seed_std?: number; boot_std?: number }
 
 export interface Row {
@@ -22,6 +22,14 @@ export interface Row {
   intervals?: Record<string, [number, number]>;
   lengths?: Record<string, number[]>;
   hashes?: Record<string, string>;
+  /** Why the row's futures are not predictions (the guard cuts >5% of samples, or they last < half the horizon). */
+  flag?: string;
+  /** Windows the row refuses (Keyposes: too little motion in the history), of the table's. */
+  refused?: { items: number; of: number; share: number };
+  /** For a row that refuses windows: its, the truth's and the baselines' values on exactly the windows it accepts. */
+  paired?: { items: number; rows: Record<string, Record<string, number | null>> };
+  /** Values per action group (walk, run, jump, dance, other), each over the group's own windows. */
+  by_group?: Record<string, { items: number; people: number; takes: number; values: Record<string, Stat> }>;
 }
 
 export interface Table {
@@ -55,10 +63,30 @@ export interface ClaimPart {
   table: string; a: string; b: string; metric: string; metric_b: string; direction: string; status: string;
   a_value: Stat | null; b_value: Stat | null; difference: number | null; bar: number | null; missing: string[];
   margin?: number; people?: number; takes?: number; items?: number; a_paired?: number; b_paired?: number; reason?: string;
+  /** One-sided p, its Holm-adjusted value (in the comparison's family), what the data alone say of an unusable part. */
+  p?: number | null; p_holm?: number; data_status?: string; minimum?: number;
+  kind?: 'trend'; setting?: string; settings?: number[]; values?: number[];
 }
 
-/** A claim's status: holds, fails, inconclusive, insufficient data, unusable, not evaluated or by construction. */
-export interface Claim { id: string; paper: string; text: string; status: string; reason?: string; parts: ClaimPart[] }
+/** A claim's status: holds, fails, inconclusive, no difference, insufficient data, unusable, not evaluated or by construction. */
+export interface Claim { id: string; paper: string; text: string; status: string; reason?: string; data_status?: string; parts: ClaimPart[] }
+
+/** A served learned model against a baseline in one held-out table (the copying family's status, after Holm). */
+export interface Verdict {
+  row: string; table: string; baseline: string; status: string; label: string; baseline_label: string;
+  difference: number | null; bar: number | null; a_paired: number | null; b_paired: number | null; items: number;
+}
+
+export interface DataSide { people: string[]; takes: number; seconds: number }
+
+/** What the tables are cut from and the models learn from (results.data). */
+export interface DataSummaryDoc {
+  fps: number; joints: number; clips: number; actions: number;
+  heldout_people: string[]; heldout_takes: number; heldout_actions: string[]; heldout_seconds: number;
+  train_people: number; train_people_list?: string[]; train_takes: number; train_seconds: number;
+  per_action?: Record<string, { group: string; train: DataSide; test: DataSide }>;
+  groups?: string[]; balance?: string; train_only_actions?: string[];
+}
 
 export interface Sanity {
   id: string; table: string | null; text: string; expected: number | null; measured: number; passed: boolean;
@@ -72,6 +100,8 @@ export interface Copying extends ClaimPart { row: string; label: string; baselin
 export interface ShapeRow {
   table: string; with: string; without: string; metric: string; with_value: Stat; without_value: Stat;
   ratio: number; within: boolean; tolerance: number; difference: number | null; bar: number | null;
+  /** Set when either row does not predict: then never "within". */
+  flag?: string;
 }
 
 export interface ClassifierReport {
@@ -110,6 +140,11 @@ export interface Results {
   bootstrap?: { rounds: number; seed: number };
   min_people?: number;
   min_takes?: number;
+  /** How many comparisons each Holm family holds, and the correction. */
+  comparisons?: { claims: number; copying: number; correction: string };
+  served_learned?: string[];
+  verdicts?: Verdict[];
+  data?: DataSummaryDoc;
   classifier_seconds?: number;
   tables: Table[];
   skipped: { row: string; label: string; reason: string }[];
