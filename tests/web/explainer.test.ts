@@ -211,16 +211,74 @@ describe('model card: staleness and failure modes', async () => {
   });
 
   it('failure modes quote results.json, and leave out what it does not have', () => {
-    const all = failureModes(results, index, manifest);
-    const walker = results.tables.find((t) => t.id === 'walker_5s');
-    if (walker?.rows.some((r) => r.id === 'regression-gru' && r.values?.speed)) {
-      const speed = walker.rows.find((r) => r.id === 'regression-gru')!.values!.speed.mean;
-      expect(all.join(' ')).toContain(`${speed.toFixed(3)} m/s`);
-    }
     const without = failureModes({ ...results, tables: [] }, index, manifest);
-    expect(without.some((t) => /regression GRU|Keyposes moves|Standing still/.test(t))).toBe(false);
-    expect(without.some((t) => /actions have test motion/.test(t))).toBe(true);
+    expect(without.some((t) => /Slowing down|Moving too fast|Feet slide|Standing still/.test(t))).toBe(false);
     expect(failureModes(null, index, null).length).toBeGreaterThan(0);
+  });
+});
+
+describe('model card: Evaluation v3 (a results document from the harness: tests/fixtures/results_v3_tiny.json)', async () => {
+  const { cardGaps, dataFacts, failureChecks, findings, horizonFrames, longestTable, paperOf, projectBibtex } = await import('../../web/src/model-card/card');
+  const { parseResults } = await import('../../web/src/results/data');
+  const { fmt } = await import('../../web/src/results/format');
+  const read = (p: string) => JSON.parse(readFileSync(new URL(p, import.meta.url), 'utf8'));
+  const index = read('../../public/clips/index.json');
+  const manifest = read('../../public/models/manifest.json');
+  const doc = parseResults(read('../fixtures/results_v3_tiny.json'));
+
+  it('finds data for every section of the page, and says which section finds none', () => {
+    expect(cardGaps(doc, index, manifest)).toEqual([]);
+    expect(failureChecks(doc, index, manifest).missing).toEqual([]);
+    // a failure-mode section whose table is missing, or a data section without the data, fails the check
+    expect(cardGaps({ ...doc, tables: [] }, index, manifest).join(' ')).toMatch(/Known failure modes: results\.json has no a held-out table/);
+    expect(cardGaps({ ...doc, data: { ...doc.data!, per_action: undefined } }, index, manifest).join(' ')).toMatch(/The data: results\.json has no data\.per_action/);
+    expect(cardGaps({ ...doc, verdicts: undefined }, index, manifest).join(' ')).toMatch(/Against the baselines/);
+    const noSpeed = { ...doc, tables: doc.tables.map((t) => ({ ...t, columns: t.columns.filter((c) => !c.startsWith('speed_ratio')) })) };
+    expect(cardGaps(noSpeed, index, manifest).join(' ')).toMatch(/speed ratios in table heldout_5s/);
+    expect(cardGaps(null, index, manifest)).not.toEqual([]);
+    expect(longestTable(doc)!.id).toBe('heldout_5s');
+  });
+
+  it('takes the data section from results.json (people, takes and seconds, train and test), not from the served clips', () => {
+    const facts = dataFacts(doc)!;
+    const d = doc.data!;
+    expect(facts.actions.map((a) => a.action)).toEqual(Object.keys(d.per_action!));
+    const text = facts.lines.join(' ');
+    expect(text).toContain(`${d.heldout_people.length} people (subjects ${d.heldout_people.join(', ')}) give ${d.heldout_takes} takes`);
+    expect(text).toContain(`Training: ${d.train_people_list!.length} other performers`);
+    expect(text).toContain(`give ${d.train_takes} takes (${d.train_seconds.toFixed(0)} s)`);
+    expect(text).not.toMatch(/\(\d+ others are trained on\)/);
+    expect(dataFacts(null)).toBeNull();
+  });
+
+  it('compares with standing still on the paired numbers of its own verdict, with their count', () => {
+    const all = findings(doc);
+    for (const v of doc.verdicts!.filter((x) => x.baseline === 'zero-velocity' && x.a_paired !== null)) {
+      const title = doc.tables.find((t) => t.id === v.table)!.title;
+      const where = `(${title.charAt(0).toLowerCase()}${title.slice(1)}).`;
+      const f = all.find((x) => x.text.includes('than standing still') && x.text.endsWith(where)
+        && x.text.startsWith(doc.tables.flatMap((t) => t.rows).find((r) => r.id === v.row)!.label));
+      expect(f, `${v.row} ${v.table}`).toBeDefined();
+      expect(f!.text).toContain(`${fmt(v.a_paired, 'm')} m against ${fmt(v.b_paired!, 'm')} m for zero-velocity on the same ${v.items} windows`);
+    }
+    // a claim part quotes the paired values, never a row's own mean over other windows
+    for (const c of doc.claims) {
+      const f = all.find((x) => x.source === `results.json, claim ${c.id}`)!;
+      for (const p of c.parts.filter((x) => x.a_paired !== undefined && x.kind !== 'trend')) expect(f.text).toContain(`on the same ${p.items} items`);
+    }
+  });
+
+  it('names each served model\'s paper and its default horizon, and cites the data as it is', () => {
+    expect(paperOf('wat_transformer')).toMatch(/^Weakly-supervised Action Transition Learning for Stochastic Human Motion Prediction \(Mao/);
+    expect(paperOf('wat_transformer')).not.toContain('wat_transformer');
+    expect(paperOf('keyposes')).toMatch(/^Long Term Motion Prediction Using Keyposes/);
+    expect(paperOf('zero_velocity')).toBe('baseline (no paper)');
+    const zero = manifest.models.find((m: { id: string }) => m.id === 'zero-velocity');
+    expect(horizonFrames(zero, manifest.fps)).toBe(60);           // its horizon control's default, 2 s
+    const wat = manifest.models.find((m: { id: string }) => m.id === 'wat-rnn');
+    expect(horizonFrames(wat, manifest.fps)).toBe(wat.params.future_frames);
+    expect(projectBibtex('1.0')).toContain('CMU motion capture');
+    expect(projectBibtex('1.0')).not.toContain('on DeepMimic motion capture');
   });
 });
 

@@ -1,10 +1,12 @@
 // The model card's content as data: what the clips are, and what the served models can and cannot
 // do, read from the measured numbers in results.json (never typed in), so the card follows each
 // evaluation run. Pure functions, tested in Node (tests/web/explainer.test.ts).
-import type { ClipIndex, Manifest } from '../contract/types';
+import type { ClipIndex, Manifest, ModelEntry } from '../contract/types';
 import PAPERS_BIB from '../../../contract/papers.bib?raw';
 import type { Results, Row, Stat, Table } from '../results/data';
 import { fmt } from '../results/format';
+import { refusedOf } from '../results/rows';
+import { ahead, beatenLine, flagOf, labelFor, VERDICT_BASELINES, verdictNumbers } from '../results/verdicts';
 
 export interface DataSummary {
   clips: number;
@@ -36,12 +38,66 @@ export function dataSummary(index: ClipIndex): DataSummary {
   };
 }
 
+/** The card's data section, from results.json's `data` (the people, takes and seconds the models learned from
+ * and are tested on), never from the clips this site serves. Null when results.json has no data summary. */
+export interface DataFacts {
+  lines: string[];
+  actions: { action: string; group: string; train: [number, number, number]; test: [number, number, number] }[];
+}
+
+const secs = (x: number) => (x >= 100 ? x.toFixed(0) : x.toFixed(1));
+
+export function dataFacts(results: Results | null): DataFacts | null {
+  const d = results?.data;
+  if (!d) return null;
+  const train = d.train_people_list ?? [];
+  const lines = [
+    `${d.clips} takes of ${d.actions} actions, ${d.joints} joints in metres at ${d.fps} frames per second, in the world frame (the root travels over the floor).`,
+    `Held out: ${d.heldout_people.length} people (subjects ${d.heldout_people.join(', ')}) give ${d.heldout_takes} takes (${secs(d.heldout_seconds)} s) of `
+      + `${d.heldout_actions.length} actions (${d.heldout_actions.map(pretty).join(', ')}); no model saw them, and every claim rests on them alone.`,
+    `Training: ${train.length || d.train_people} other performers${train.length ? ` (${train.join(', ')})` : ''} give ${d.train_takes} takes (${secs(d.train_seconds)} s).`
+      + (d.balance ? ` Balance: ${d.balance}.` : ''),
+  ];
+  if (d.train_only_actions?.length) {
+    lines.push(`Trained on but never tested (no held-out person performs them): ${d.train_only_actions.map(pretty).join(', ')}; no number here says how the models do on them.`);
+  }
+  const actions = Object.entries(d.per_action ?? {}).map(([action, x]) => ({ action, group: x.group,
+    train: [x.train.people.length, x.train.takes, x.train.seconds] as [number, number, number],
+    test: [x.test.people.length, x.test.takes, x.test.seconds] as [number, number, number] }));
+  return { lines, actions };
+}
+
+const pretty = (s: string) => s.replace(/_/g, ' ');
+
+/** Which paper each served method comes from (contract/papers.bib key); the baselines come from none. */
+const PAPER_KEYS: Record<string, string> = { wat: 'mao2022weakly', wat_transformer: 'mao2022weakly', lcp_vae: 'aliakbarian2021contextually', keyposes: 'kiciroglu2022keyposes' };
+const PAPER_SHORT: Record<string, string> = { mao2022weakly: 'Mao, Liu, Salzmann, CVPR 2022', aliakbarian2021contextually: 'Aliakbarian et al., ICCV 2021', kiciroglu2022keyposes: 'Kiciroglu, Wang, Salzmann, Fua, 3DV 2022' };
+
+/** A paper's title as contract/papers.bib gives it. */
+export function paperTitle(key: string, bib: string = PAPERS_BIB): string | null {
+  const entry = new RegExp(`@\\w+\\{${key},([\\s\\S]*?)\\n\\}`).exec(bib);
+  return entry ? /title\s*=\s*\{(.+?)\},?\s*$/m.exec(entry[1])?.[1] ?? null : null;
+}
+
+/** The paper a served method comes from, by its name: "Weakly-supervised Action … (Mao, Liu, Salzmann, CVPR 2022)". */
+export function paperOf(method: string): string {
+  const key = PAPER_KEYS[method];
+  if (!key) return 'baseline (no paper)';
+  return `${paperTitle(key) ?? key} (${PAPER_SHORT[key]})`;
+}
+
+/** How far a served model predicts by default: its horizon control's default (seconds), else its future frames. */
+export function horizonFrames(m: ModelEntry, fps: number): number {
+  const c = m.controls.find((x) => x.id === 'horizon');
+  return typeof c?.default === 'number' ? Math.round(c.default * fps) : m.params.future_frames;
+}
+
 export type Verdict = 'can' | 'cannot' | 'unknown';
 
 export interface Finding {
   verdict: Verdict;
   text: string;
-  /** Where the numbers come from: "results.json, table walker_5s". */
+  /** Where the numbers come from: "results.json, table heldout_5s". */
   source: string;
 }
 
@@ -71,12 +127,24 @@ function bestPerGroup(results: Results, t: Table, metric: string): Row[] {
   return [...best.values()];
 }
 
+/** How many of the table's windows a row predicts, and whether that is all of them. */
+const predictsAll = (r: Row, t: Table) => refusedOf(r, t) === 0;
+
+/** The captured frames' value of `metric` on exactly the windows `r` predicts, or null when results.json
+ * does not hold it (a row that refuses windows has the truth's values on its windows only in `paired`). */
+export function truthOn(t: Table, r: Row, metric: string): number | null {
+  const oracle = t.rows.find((x) => x.kind === 'oracle' && x.values);
+  if (predictsAll(r, t)) return val(oracle, metric)?.mean ?? null;
+  const x = r.paired?.rows.oracle?.[metric];
+  return x === undefined || x === null ? null : x;
+}
+
 /**
- * What the models can and cannot do, each statement with its numbers:
- * - accuracy against the zero-velocity baseline (best of K MPJPE at the table's horizon);
+ * What the models can and cannot do, each statement with its numbers, every pair on the same windows:
+ * - the served learned models against standing still (results.json `verdicts`: best-of-K ADE, paired, after Holm);
  * - whether a model draws different futures at all (diversity);
- * - how rough its motion is against the captured frames (the smoothness loss, WAT Eq. 4);
- * - how recognisable its futures are against the ground truth (the MOAC classifier);
+ * - how rough its motion is against the captured frames on its windows (the smoothness loss, WAT Eq. 4);
+ * - how recognisable its futures are against the captured ones on its windows (the MOAC classifier);
  * - the paper claims results.json checks, with their status; rows not evaluated, with the reason.
  */
 export function findings(results: Results): Finding[] {
@@ -88,28 +156,27 @@ export function findings(results: Results): Finding[] {
     const where = `${t.title.charAt(0).toLowerCase()}${t.title.slice(1)}`;
     const zero = t.rows.find((r) => r.id === 'zero-velocity' && r.values);
     const oracle = t.rows.find((r) => r.kind === 'oracle' && r.values);
-    // The evaluation's paired comparisons against standing still (2σ bar over takes and seeds), when it made them.
-    const paired = (results.copying ?? []).filter((c) => c.table === t.id && c.baseline === 'zero-velocity' && c.a_value && c.b_value);
-    if (t.truth && paired.length) {
-      for (const c of paired) {
-        const verdict: Verdict = c.status === 'holds' ? 'can' : c.status === 'fails' ? 'cannot' : 'unknown';
-        out.push({ verdict, source: `${src} (paired on its windows, 2σ bar over takes and seeds)`,
-          text: `${c.label} ${verdict === 'can' ? 'comes closer to' : verdict === 'cannot' ? 'comes no closer to' : 'is not shown to come closer to'} `
-            + `the captured future than standing still: best-of-${t.k} ADE over ${seconds(t.horizon_frames, fps)} ${withUnit(results, 'ade', c.a_value!.mean)} `
-            + `against ${withUnit(results, 'ade', c.b_value!.mean)} for zero-velocity (${where}, ${t.windows ?? '?'} histories).` });
-      }
+    // The evaluation's own paired verdicts against standing still: both rows on the model's windows, after Holm.
+    const verdicts = (results.verdicts ?? []).filter((v) => v.table === t.id && v.baseline === 'zero-velocity' && v.a_paired !== null && !flagOf(results, v));
+    for (const v of verdicts) {
+      const verdict: Verdict = v.status === 'holds' ? 'can' : v.status === 'fails' ? 'cannot' : 'unknown';
+      out.push({ verdict, source: `${src}, verdicts (paired on the model's windows, after Holm)`,
+        text: `${labelFor(results, v.row)} ${verdict === 'can' ? 'comes closer to' : verdict === 'cannot' ? 'comes no closer to' : 'is not shown to come closer to'} `
+          + `the captured future than standing still: best-of-${t.k} ADE over ${seconds(t.horizon_frames, fps)} ${withUnit(results, 'ade', v.a_paired!)} `
+          + `against ${withUnit(results, 'ade', v.b_paired!)} for zero-velocity on the same ${v.items} windows (${where}).` });
     }
+    // Older results have no verdicts: an unpaired mean only for rows that predict every window zero-velocity does.
     const mpjpe = t.columns.includes('mpjpe_h_best') ? 'mpjpe_h_best' : t.columns.includes('mpjpe_1s_best') ? 'mpjpe_1s_best' : null;
-    if (t.truth && zero && mpjpe && !paired.length) {
+    if (t.truth && zero && mpjpe && !results.verdicts && predictsAll(zero, t)) {
       const z = val(zero, mpjpe)!;
       for (const r of bestPerGroup(results, t, mpjpe)) {
-        if (r.id === zero.id) continue;
+        if (r.id === zero.id || !predictsAll(r, t) || r.flag) continue;
         const v = val(r, mpjpe)!;
         const lower = v.mean < z.mean;
         out.push({ verdict: lower ? 'can' : 'cannot', source: src,
           text: `${r.label} ${lower ? 'comes closer to' : 'comes no closer to'} the captured future than standing still: best-of-${r.k ?? t.k} MPJPE `
             + `${mpjpe === 'mpjpe_h_best' ? `at ${seconds(t.horizon_frames, fps)}` : 'over 1 s'} ${withUnit(results, mpjpe, v.mean)} against `
-            + `${withUnit(results, mpjpe, z.mean)} for zero-velocity (${where}, ${t.windows ?? '?'} histories).` });
+            + `${withUnit(results, mpjpe, z.mean)} for zero-velocity on the same ${t.items ?? t.windows ?? '?'} windows (${where}).` });
       }
     }
     if (t.columns.includes('div')) {
@@ -123,26 +190,29 @@ export function findings(results: Results): Finding[] {
         }
       }
     }
-    const rough = oracle ? val(oracle, 'smooth') : null;
-    if (rough && t.columns.includes('smooth')) {
-      const byModel = new Map<string, Row[]>();
+    if (oracle && t.columns.includes('smooth')) {
+      const byModel = new Map<string, string[]>();
       for (const r of rowsOf(t)) {
         const s = val(r, 'smooth');
-        if (s && s.mean > 2 * rough.mean) byModel.set(modelKey(r), [...(byModel.get(modelKey(r)) ?? []), r]);
+        const rough = truthOn(t, r, 'smooth');
+        if (s && rough && s.mean > 2 * rough) {
+          byModel.set(modelKey(r), [...(byModel.get(modelKey(r)) ?? []),
+            `${r.label} ${withUnit(results, 'smooth', s.mean)} against ${withUnit(results, 'smooth', rough)} (${times(s.mean / rough)}) on its ${r.items ?? t.items} windows`]);
+        }
       }
-      for (const rows of byModel.values()) {
-        const each = rows.map((r) => `${r.label} ${withUnit(results, 'smooth', r.values!.smooth.mean)} (${times(r.values!.smooth.mean / rough.mean)})`);
-        out.push({ verdict: 'cannot', source: src, text: `${rows.length > 1 ? `${rows[0].label.replace(/\s*\(.*\)$/, '')} at every setting` : rows[0].label} moves more `
-          + `roughly than captured motion: smoothness loss (WAT Eq. 4) ${each.join(', ')}, against ${withUnit(results, 'smooth', rough.mean)} for the captured frames (${where}).` });
+      for (const [key, each] of byModel) {
+        const first = rowsOf(t).find((r) => modelKey(r) === key)!;
+        out.push({ verdict: 'cannot', source: src, text: `${each.length > 1 ? `${first.label.replace(/\s*\(.*\)$/, '')} at every setting` : first.label} moves more `
+          + `roughly than captured motion on the same windows: smoothness loss (WAT Eq. 4) ${each.join(', ')} (${where}).` });
       }
     }
-    const acc = oracle ? val(oracle, 'acc_moac') : null;
-    if (acc && acc.mean > 0) {
+    if (oracle && val(oracle, 'acc_moac')) {
       for (const r of rowsOf(t)) {
         const a = val(r, 'acc_moac');
-        if (a && a.mean < 0.5 * acc.mean) {
+        const truth = truthOn(t, r, 'acc_moac');
+        if (a && truth && truth > 0 && a.mean < 0.5 * truth) {
           out.push({ verdict: 'cannot', source: src, text: `${r.label}'s futures are seldom recognised as the history's action: MOAC accuracy `
-            + `${withUnit(results, 'acc_moac', a.mean)} against ${withUnit(results, 'acc_moac', acc.mean)} for the captured future (${where}).` });
+            + `${withUnit(results, 'acc_moac', a.mean)} against ${withUnit(results, 'acc_moac', truth)} for the captured future on the same ${r.items ?? t.items} windows (${where}).` });
         }
       }
     }
@@ -153,10 +223,10 @@ export function findings(results: Results): Finding[] {
     }
   }
   for (const c of results.claims) {
-    const nums = c.parts.filter((p) => p.a_value && p.b_value).map((p) => {
+    const nums = c.parts.filter((p) => p.a_paired !== undefined && p.b_paired !== undefined).map((p) => {
       const a = rowLabel(results, p.table, p.a);
       const b = rowLabel(results, p.table, p.b);
-      return `${a} ${withUnit(results, p.metric, p.a_value!.mean)} vs ${b} ${withUnit(results, p.metric_b, p.b_value!.mean)} (${results.columns[p.metric]?.label ?? p.metric})`;
+      return `${a} ${withUnit(results, p.metric, p.a_paired!)} vs ${b} ${withUnit(results, p.metric_b, p.b_paired!)} (${results.columns[p.metric]?.label ?? p.metric}, on the same ${p.items} items)`;
     });
     const verdict: Verdict = c.status === 'holds' ? 'can' : c.status === 'fails' ? 'cannot' : 'unknown';
     out.push({ verdict, source: `results.json, claim ${c.id}`,
@@ -168,13 +238,14 @@ export function findings(results: Results): Finding[] {
 
 /** Statements that repeat per model, merged into one per table: the subject, and the text around it. */
 const MERGEABLE: { re: RegExp; lead: (m: RegExpExecArray) => string }[] = [
-  { re: /^(.+?) (comes closer to|comes no closer to|is not shown to come closer to) the captured future than standing still: (best-of-\d+ (?:MPJPE|ADE) (?:at|over) [^ ]+ s) (.+?) against (.+?) for zero-velocity \((.+)\)\.$/,
-    lead: (m) => `${m[2] === 'comes closer to' ? 'Closer to' : m[2] === 'comes no closer to' ? 'No closer to' : 'Not shown closer to'} the captured future than standing still (${m[3]}; zero-velocity ${m[5]}; ${m[6]})` },
+  // each model's pair stays together: zero-velocity's value is on that model's windows
+  { re: /^(.+?) (comes closer to|comes no closer to|is not shown to come closer to) the captured future than standing still: (best-of-\d+ (?:MPJPE|ADE) (?:at|over) [^ ]+ s) (.+? against .+?) for zero-velocity (on the same \d+ windows) \((.+)\)\.$/,
+    lead: (m) => `${m[2] === 'comes closer to' ? 'Closer to' : m[2] === 'comes no closer to' ? 'No closer to' : 'Not shown closer to'} the captured future than standing still (${m[3]}, the model against zero-velocity on the model's windows; ${m[6]})` },
   { re: /^(.+?) (draws different futures for one history): diversity (.+?) \((.+)\)\.$/,
     lead: (m) => `Different futures for one history (diversity; ${m[4]})` },
   { re: /^(.+?) (draws a single future): diversity 0 \((.+)\)\.$/, lead: (m) => `A single future (diversity 0; ${m[3]})` },
-  { re: /^(.+?)'s futures are (seldom recognised as the history's action): MOAC accuracy (.+?) against (.+?) for the captured future \((.+)\)\.$/,
-    lead: (m) => `Futures seldom recognised as the history's action (MOAC accuracy; captured future ${m[4]}; ${m[5]})` },
+  { re: /^(.+?)'s futures are (seldom recognised as the history's action): MOAC accuracy (.+? against .+?) for the captured future (on the same \d+ windows) \((.+)\)\.$/,
+    lead: (m) => `Futures seldom recognised as the history's action (MOAC accuracy, the model against the captured future on the model's windows; ${m[5]})` },
 ];
 
 /**
@@ -190,7 +261,7 @@ export function mergeFindings(list: Finding[]): Finding[] {
     for (const [i, { re, lead }] of MERGEABLE.entries()) {
       const m = re.exec(f.text);
       if (!m) continue;
-      const value = i === 0 ? m[4] : i === 1 ? m[3] : i === 2 ? null : m[3];
+      const value = i === 0 ? `${m[4]} ${m[5]}` : i === 1 ? m[3] : i === 2 ? null : `${m[3]} ${m[4]}`;
       const key = `${f.verdict}|${i}|${lead(m)}`;
       let g = groups.get(key);
       if (!g) {
@@ -212,29 +283,21 @@ export function mergeFindings(list: Finding[]): Finding[] {
 }
 
 /**
- * The card's summary, five lines at most: results.json's own `summary` when the evaluation writes
- * one, else lines drawn from the same findings the card lists (what was served and measured, how
- * many models beat standing still, which draw different futures, how the paper claims fare).
+ * The card's summary, five lines at most: results.json's own `summary` when the evaluation writes one (the
+ * same lines as docs/MODEL_CARD.md), else lines drawn from results.json as the page reads it: the data, which
+ * served learned models are shown to beat each baseline, and how the paper claims fare.
  */
 export function cardSummary(results: Results | null, manifest: Manifest | null, index: ClipIndex): string[] {
   if (results?.summary?.length) return results.summary.slice(0, 5);
-  const d = dataSummary(index);
-  const lines = [`Trained and tested on ${d.clips} motion clips (${d.seconds.toFixed(0)} s, ${d.actions} actions); `
-    + `${d.testSeconds.toFixed(0)} s are held out for testing.`];
+  const facts = dataFacts(results);
+  const site = dataSummary(index);
+  const lines = facts ? [facts.lines[1], facts.lines[2]] : [`This site offers ${site.clips} motion clips as histories (${site.seconds.toFixed(0)} s, ${site.actions} actions).`];
   if (manifest) lines.push(`${manifest.models.length} models are served: ${manifest.models.map((m) => m.label).join('; ')}.`);
   if (!results) return [...lines, 'The measured numbers (results.json) could not be loaded.'];
-  const all = findings(results);
-  const closer = all.filter((f) => / comes closer to the captured future/.test(f.text));
-  const notCloser = all.filter((f) => / comes no closer to the captured future/.test(f.text));
-  const name = (f: Finding) => f.text.replace(/ comes (no )?closer to.*$/, '');
-  if (closer.length || notCloser.length) {
-    lines.push(`Closer to the captured future than standing still: ${[...new Set(closer.map(name))].join(', ') || 'none'}; `
-      + `not closer: ${[...new Set(notCloser.map(name))].join(', ') || 'none'}.`);
-  }
-  const diverse = [...new Set(all.filter((f) => / draws different futures/.test(f.text)).map((f) => f.text.replace(/ draws different futures.*$/, '')))];
-  if (diverse.length) lines.push(`${diverse.length} of the measured rows draw different futures for one history; the baselines draw one.`);
+  lines.push(...VERDICT_BASELINES.map((b) => beatenLine(results, b)).filter((x): x is string => x !== null));
   const count = (s: string) => results.claims.filter((c) => c.status === s).length;
-  lines.push(`Of ${results.claims.length} paper claims tested, ${count('holds')} hold here, ${count('fails')} fail and ${results.claims.length - count('holds') - count('fails')} are inconclusive.`);
+  const statuses = ['holds', 'fails', 'inconclusive', 'no difference', 'insufficient data', 'unusable', 'not evaluated', 'by construction'];
+  lines.push(`Paper claims: ${statuses.map((x) => `${count(x)} ${x}`).join(', ')}.`);
   return lines.slice(0, 5);
 }
 
@@ -268,55 +331,95 @@ export function classifierCaveats(results: Results): string[] {
   return out;
 }
 
+/** The held-out table with ground truth that predicts furthest ahead (heldout_5s in the full evaluation). */
+export function longestTable(results: Results | null): Table | undefined {
+  return [...(results?.tables ?? [])].filter((t) => t.truth && !t.in_sample && t.rows.some((r) => r.values))
+    .sort((a, b) => b.horizon_frames - a.horizon_frames)[0];
+}
+
+/** The served learned models (results.json `served_learned`); older results: the served model rows but zero-velocity. */
+const servedLearned = (results: Results) => results.served_learned ?? Object.keys(results.models).filter((id) => id !== 'zero-velocity');
+
 /**
- * The failure modes seen in the measured numbers, each with them; an item whose numbers are not in
- * results.json (a later evaluation without that table or row) is left out rather than guessed.
+ * The failure modes seen in the measured numbers, each with them, and what the section looked for and did
+ * not find (a table or column results.json lacks: `missing`, which the card test requires to be empty).
  */
-export function failureModes(results: Results | null, index: ClipIndex, manifest: Manifest | null): string[] {
+export function failureChecks(results: Results | null, index: ClipIndex, manifest: Manifest | null): { texts: string[]; missing: string[] } {
   const out: string[] = [];
-  const row = (table: string, id: string) => results?.tables.find((x) => x.id === table)?.rows.find((r) => r.id === id && r.values);
-  const v = (table: string, id: string, metric: string) => val(row(table, id), metric)?.mean;
+  const missing: string[] = [];
   const u = (metric: string, x: number) => (results ? withUnit(results, metric, x) : String(x));
-  const walker = 'walker_5s';
-  const [zMoac, oMoac] = [v(walker, 'zero-velocity', 'acc_moac'), v(walker, 'oracle', 'acc_moac')];
-  if (zMoac !== undefined && oMoac !== undefined && zMoac >= oMoac) {
-    out.push(`Standing still scores well: a future that does not move is recognised as walking by the motion-only classifier as often as `
-      + `the captured future (MOAC accuracy ${u('acc_moac', zMoac)} against ${u('acc_moac', oMoac)} on the walker test clips). High recognition `
-      + 'accuracy alone does not mean lifelike motion.');
+  const t = longestTable(results);
+  if (results && !t) missing.push('a held-out table with ground truth');
+  if (results && t) {
+    const where = `${t.title.charAt(0).toLowerCase()}${t.title.slice(1)}`;
+    for (const r of t.rows.filter((x) => x.flag)) out.push(`${r.label} does not predict in ${where}: ${r.flag}; it counts in no tally.`);
+    const speed = t.columns.filter((c) => c.startsWith('speed_ratio_s')).pop();
+    if (!speed) missing.push(`the speed ratios in table ${t.id}`);
+    const served = t.rows.filter((r) => servedLearned(results).includes(r.id) && r.values && !r.flag);
+    if (speed) {
+      const second = speed.replace('speed_ratio_s', '');
+      const slow = served.filter((r) => (val(r, speed)?.mean ?? 1) < 0.5);
+      const fast = served.filter((r) => (val(r, speed)?.mean ?? 1) > 2);
+      if (slow.length) out.push(`Slowing down to a halt: in second ${second} of ${where} the joints of ${slow.map((r) => `${r.label} move at ${u(speed, val(r, speed)!.mean)}`).join(', ')} `
+        + 'the captured speed on the same windows (a ratio of 1 moves as people do).');
+      if (fast.length) out.push(`Moving too fast: in second ${second} of ${where} the joints of ${fast.map((r) => `${r.label} move at ${u(speed, val(r, speed)!.mean)}`).join(', ')} the captured speed on the same windows.`);
+    }
+    if (!t.columns.includes('skate')) missing.push(`foot skating in table ${t.id}`);
+    const sliding = served.flatMap((r) => {
+      const mine = val(r, 'skate')?.mean;
+      const truth = truthOn(t, r, 'skate');
+      return mine !== undefined && truth && mine > 2 * truth ? [`${r.label} ${u('skate', mine)} against ${u('skate', truth)} for the captures on its ${r.items ?? t.items} windows`] : [];
+    });
+    if (sliding.length) out.push(`Feet slide while planted (foot skating, the median speed of a foot in contact, ${where}): ${sliding.join('; ')}.`);
+    const zero = t.rows.find((r) => r.id === 'zero-velocity' && r.values);
+    const oracle = t.rows.find((r) => r.kind === 'oracle' && r.values);
+    const [zPose, oPose] = [val(zero, 'acc_pose')?.mean, val(oracle, 'acc_pose')?.mean];
+    if (zero && predictsAll(zero, t) && zPose !== undefined && oPose !== undefined && zPose >= oPose) {
+      out.push(`Standing still scores well: a future that does not move is recognised by the pose classifier as often as the captured future `
+        + `(accuracy ${u('acc_pose', zPose)} against ${u('acc_pose', oPose)} on the same ${t.items ?? t.windows} windows, ${where}). High recognition accuracy alone does not mean lifelike motion.`);
+    }
   }
-  const [gSpeed, oSpeed, gErr, zErr] = [v(walker, 'regression-gru', 'speed'), v(walker, 'oracle', 'speed'),
-    v(walker, 'regression-gru', 'mpjpe_h_best'), v(walker, 'zero-velocity', 'mpjpe_h_best')];
-  if (gSpeed !== undefined && oSpeed !== undefined && gErr !== undefined && zErr !== undefined) {
-    out.push(`The regression GRU does not settle into a walk: 5 s ahead its pose is ${u('mpjpe_h_best', gErr)} from the captured one `
-      + `(zero-velocity: ${u('mpjpe_h_best', zErr)}) and in the last second its joints move at ${u('speed', gSpeed)}, against `
-      + `${u('speed', oSpeed)} in the captured walking.`);
+  const facts = results?.data;
+  if (results && !facts?.per_action) missing.push('results.data.per_action');
+  if (facts?.per_action) {
+    const tested = Object.entries(facts.per_action).filter(([, x]) => x.test.takes > 0).map(([a]) => pretty(a));
+    const all = Object.keys(facts.per_action).length;
+    out.push(`Only ${tested.length} of ${all} actions have held-out people (${tested.join(', ')}): no number here says how the models do on the others, `
+      + 'which are trained on only.');
   }
-  const kp = results?.tables.find((x) => x.id === walker)?.rows.filter((r) => r.group === 'keyposes' && r.values?.smooth) ?? [];
-  const oSmooth = v(walker, 'oracle', 'smooth');
-  if (kp.length && oSmooth) {
-    const ratios = kp.map((r) => r.values!.smooth.mean / oSmooth);
-    out.push(`Keyposes moves roughly: it goes from one cluster-centre pose to the next, and its smoothness loss (WAT Eq. 4) is `
-      + `${times(Math.min(...ratios))} to ${times(Math.max(...ratios))} that of captured walking (${kp.map((r) => `${r.label} ${u('smooth', r.values!.smooth.mean)}`).join(', ')}; `
-      + `captured ${u('smooth', oSmooth)}).`);
-  }
-  const testActions = [...new Set(index.clips.filter((c) => c.test.length).map((c) => c.action.replace(/_/g, ' ')))];
-  const allActions = new Set(index.clips.map((c) => c.action)).size;
-  out.push(`Only ${testActions.length} of ${allActions} actions have test motion (${testActions.join(', ')}): no number here says how the models do `
-    + 'on the others, whose histories can only come from training clips (in-sample).');
   if (manifest) {
     const longest = Math.max(...manifest.models.map((m) => m.params.history_frames));
     const short = index.clips.filter((c) => c.frames < longest && !c.loops).map((c) => c.name.replace(/_/g, ' '));
-    if (short.length) out.push(`Clips shorter than the longest history (${longest} frames) cannot give that model a history: ${short.join(', ')}.`);
+    if (short.length) out.push(`Clips on this site shorter than the longest history (${longest} frames) cannot give that model a history: ${short.join(', ')}.`);
   }
-  const memo = (results?.copying ?? []).filter((c) => c.baseline === 'nearest-window' && c.status !== 'holds');
+  if (results && !results.verdicts) missing.push('results.verdicts');
+  const memo = (results?.verdicts ?? []).filter((v) => v.baseline === 'nearest-window' && v.status !== 'holds' && v.status !== 'not evaluated' && !flagOf(results!, v));
   if (memo.length) {
     out.push(`Not shown to beat the nearest training window's future on held-out people (memorisation is not ruled out): `
-      + `${[...new Set(memo.map((c) => `${c.label} (${c.table})`))].join(', ')}.`);
+      + `${memo.map((v) => `${labelFor(results!, v.row)} at ${ahead(results!, v.table)} (${verdictNumbers(results!, v)})`).join('; ')}.`);
   }
   out.push('Few people per action: a model has seen a few ways to do each action, and the held-out people are few; a comparison '
-    + 'resting on too few people or takes is reported as insufficient data.');
+    + `resting on too few people or takes${results?.min_people !== undefined ? ` (fewer than ${results.min_people} people or ${results.min_takes} takes)` : ''} is reported as insufficient data.`);
   out.push('Skeletons have 18 joints, without hands, foot orientation or face.');
-  return out;
+  return { texts: out, missing };
+}
+
+/** The failure modes seen in the measured numbers (see failureChecks). */
+export function failureModes(results: Results | null, index: ClipIndex, manifest: Manifest | null): string[] {
+  return failureChecks(results, index, manifest).texts;
+}
+
+/** Sections of the card page that find no data in results.json or the manifest (empty when every one does). */
+export function cardGaps(results: Results | null, index: ClipIndex, manifest: Manifest | null): string[] {
+  if (!results) return ['results.json could not be read'];
+  const gaps: string[] = [];
+  if (!dataFacts(results)?.actions.length) gaps.push('The data: results.json has no data.per_action');
+  if (!results.summary?.length) gaps.push('In short: results.json has no summary');
+  if (!results.verdicts?.length) gaps.push('Against the baselines: results.json has no verdicts');
+  for (const v of results.verdicts ?? []) if (!results.tables.some((t) => t.id === v.table)) gaps.push(`Against the baselines: table ${v.table} is not in results.json`);
+  if (!manifest) gaps.push('The models: the manifest could not be read');
+  gaps.push(...failureChecks(results, index, manifest).missing.map((m) => `Known failure modes: results.json has no ${m}`));
+  return [...new Set(gaps)];
 }
 
 /** A few of each table's columns for the card (the Results page has them all). */
@@ -339,6 +442,6 @@ export function projectBibtex(version: string): string {
   version = {${version}},
   year    = {2026},
   license = {MIT},
-  note    = {WAT, LCP-VAE and Keyposes on DeepMimic motion capture, run with onnxruntime-web}
+  note    = {WAT, LCP-VAE and Keyposes trained on CMU motion capture (DeepMimic clips as training only), run with onnxruntime-web}
 }`;
 }
