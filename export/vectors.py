@@ -49,7 +49,7 @@ def facing_vector() -> dict:
     from .paths import CLIPS_DIR
     cases = []
     # a travelling, turning walk; a spin; a held-out salsa take (the root channel's round trip on all)
-    for name, start in [("deepmimic_walker_turn_left1", 3), ("deepmimic_spin", 40), ("cmu_61_04", 20)]:
+    for name, start in [("deepmimic_walker_turn_left1", 3), ("deepmimic_spin", 40), ("cmu_61_13", 20)]:
         window = read_clip(CLIPS_DIR / f"{name}.json").positions[start:start + 12].round(7)
         out, placement = canonicalise(window, at_frame=9, skeleton=SKELETON)
         cases.append({"clip": name, "start": start, "at_frame": 9, "window": window.tolist(),
@@ -88,7 +88,7 @@ E2E_RECORD = {"zero_velocity": record, "regression": record, "wat": wat_record, 
               "lcp_vae": lcp_record, "keyposes": keyposes_record}
 E2E_MARGIN = 1e-3            # sampled labels (Keyposes): distance of a uniform to its CDF bounds
 # Held-out takes (people no model trained on) for the end-to-end cases: a walk and a ballet dance.
-HELD_OUT_WALK, HELD_OUT_DANCE, HELD_OUT_SALSA = "cmu_10_04", "cmu_49_11", "cmu_61_04"
+HELD_OUT_WALK, HELD_OUT_DANCE, HELD_OUT_SALSA = "cmu_10_04", "cmu_49_09", "cmu_61_13"
 E2E_TEXT = ("TypeScript predictors must reproduce these: lengths, segments, labels and marks exactly, every float "
             "within the model's tolerance. Cases keep margins to any decision threshold (`margin`, per model), "
             "so a difference within the tolerance cannot flip a decision: each WAT case's stops keep 1.5 x the "

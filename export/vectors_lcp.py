@@ -42,8 +42,8 @@ def lcp_vector() -> dict:
 
 # (clip, start, K, seed, horizon frames or None for the control's default, controls)
 E2E_CASES = [("cmu_10_04", 3, 4, 7, 75, {"sigma_scale": 1.5}),   # 75 > 60: one recursive call
-             ("cmu_49_11", 90, 4, 7, 75, {}),
-             ("cmu_61_04", 5, 10, 3, None, {"sigma_scale": 0.5})]
+             ("cmu_49_09", 90, 4, 7, 75, {}),
+             ("cmu_61_13", 5, 10, 3, None, {"sigma_scale": 0.5})]
 
 
 def lcp_e2e_cases(entry: dict, predictor) -> list[dict]:

@@ -250,6 +250,7 @@ def served_verdicts(copying: list[dict], served: list[str], tables=("heldout_1s"
                             "status": c["status"] if c else S.MISSING,
                             "difference": c.get("difference") if c else None, "bar": c.get("bar") if c else None,
                             "a_paired": c.get("a_paired") if c else None, "b_paired": c.get("b_paired") if c else None,
+                            "p": c.get("p") if c else None, "p_holm": c.get("p_holm") if c else None,
                             "items": c.get("items") if c else 0, "label": c["label"] if c else row,
                             "baseline_label": c["baseline_label"] if c else base})
     return out

@@ -634,7 +634,9 @@ def does_not_predict(values: dict, horizon: int) -> str:
 
 
 PAIRED_ROWS = ("oracle", "zero-velocity", "regression-gru")
-PAIRED_COLUMNS = ("ade", "fde", "mpjpe_cm", "mpjpe_f_cm", "skate", "hip_range", "speed_ratio_s1", "speed_ratio_s2")
+PAIRED_COLUMNS = ("ade", "fde", "mpjpe_cm", "mpjpe_f_cm", "skate", "hip_range", "outside", "spread_cm", "smooth",
+                  "acc_moac", *[f"speed_ratio_s{s}" for s in range(1, R.SECONDS + 1)],
+                  *[f"root_ratio_s{s}" for s in range(1, R.SECONDS + 1)])
 
 
 def on_accepted(stats: dict, row: str, tab: Table) -> dict:
