@@ -705,7 +705,7 @@ def markdown(doc: dict) -> str:
     lines += [f"- `{mid}`: `{h}`" for mid, h in sorted(doc["models"].items())] + [""]
     if doc.get("summary"):
         lines += ["## In short", ""] + [f"- {s}" for s in doc["summary"]] + [""]
-    lines += _verdicts(doc) + _claims(doc) + _copying(doc) + _shape(doc) + _realism(doc) + _rows(doc)
+    lines += _data(doc) + _verdicts(doc) + _claims(doc) + _copying(doc) + _shape(doc) + _realism(doc) + _rows(doc)
     lines += _comparisons(doc) + _variants(doc) + _sanity(doc)
     lines += _classifiers(doc)
     for t in sorted(doc["tables"], key=lambda t: bool(t.get("in_sample"))):
@@ -715,6 +715,31 @@ def markdown(doc: dict) -> str:
         lines += [f"- {s['label']} (`{s['row']}`): {s['reason']}" for s in doc["skipped"]]
         lines.append("")
     return "\n".join(lines)
+
+
+def _data(doc: dict) -> list[str]:
+    """The split: per action, who the models learn from and who they are tested on, and what cannot be
+    evaluated (actions without a held-out person; horizons no held-out take of an action holds)."""
+    d = doc.get("data", {})
+    per = d.get("per_action")
+    if not per:
+        return []
+    lines = ["## The data and the split", "",
+             f"Held out: subjects {', '.join(d['heldout_people'])} ({d['heldout_takes']} takes, {fmt(d['heldout_seconds'])} s); "
+             f"trained on: {', '.join(d.get('train_people_list', []))} ({d['train_takes']} takes, {fmt(d['train_seconds'])} s). "
+             f"The {d.get('balance', '')} (`export/data/balance.py`).", "",
+             "| action | group | train people | train takes | train s | held-out people | held-out takes | held-out s |",
+             "|---|---|---|---|---|---|---|---|"]
+    for a, v in per.items():
+        tr, te = v["train"], v["test"]
+        lines.append(f"| {a} | {v['group']} | {', '.join(tr['people']) or '—'} | {tr['takes']} | {tr['seconds']:.1f} | "
+                     f"{', '.join(te['people']) or '— (trained on only)'} | {te['takes']} | {te['seconds']:.1f} |")
+    exceptions = [f"`{t['id']}`: {', '.join(sorted(e['action'] for e in t['exceptions']))}"
+                  for t in doc["tables"] if t.get("exceptions")]
+    lines += ["", "Not evaluated: " + (", ".join(d.get("train_only_actions", [])) or "none")
+              + " (no held-out person). Horizon exceptions (no held-out take of the action holds history + horizon; "
+              "never padded): " + ("; ".join(exceptions) or "none") + ".", ""]
+    return lines
 
 
 def write_markdown(doc: dict, path: Path = RESULTS_MD) -> None:

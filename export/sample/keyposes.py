@@ -18,7 +18,7 @@ from ..data.skeleton import SKELETON
 from ..ops import keyposes as kp
 from ..ops.facing import canonicalise, place, root_relative, rotate_about_y, split_root
 from ..ops.bones import keep_bones
-from ..ops.keypose_travel import travel
+from ..ops.keypose_travel import pace, travel
 from ..ops.seam import continue_history
 from ..ops.keypose_interpolation import interpolate, keypose_times
 from ..ops.proximity import face_forward, proximity, sample_index, softmax
@@ -157,9 +157,10 @@ class KeyposesPredictor(Predictor):
         # The root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z; then
         # the seam with the history (ops/seam.py) and the skeleton's bone lengths (ops/bones.py), as the
         # graphs of the other methods end.
+        scale = pace(canon[:, 0, [0, 2]], obs["labels"], self.root_velocity)   # the history's own pace
         for s in range(k):
             futures[s, :, 0, [0, 2]] = travel(labels[s], [lengths[c] for c in classes[s]], self.root_velocity,
-                                              horizon).T
+                                              horizon, scale).T
         if p.get("finish", True):
             futures = keep_bones(continue_history(futures, canon[None, -2:]))
         futures = place(futures, placement).astype(np.float32)
@@ -175,6 +176,7 @@ class KeyposesPredictor(Predictor):
             at = futures[s, np.asarray(marks, dtype=np.int64), :1] * np.array([1.0, 0.0, 1.0])   # root's ground point
             ghost_poses.append((rotate_about_y(centres[labels[s][:shown]], placement.angle) + at).astype(np.float32))
         readouts = [{"label": "observed keyposes", "value": len(obs["frames"])},
-                    {"label": "keyposes per future", "value": float(np.mean([len(g) for g in ghost_frames]))}]
+                    {"label": "keyposes per future", "value": float(np.mean([len(g) for g in ghost_frames]))},
+                    {"label": "travel pace (history / training)", "value": round(scale, 4)}]
         return Prediction(futures, np.full(k, horizon), samples, readouts=readouts, margins=margins,
                                   ghosts={"frames": ghost_frames, "poses": ghost_poses})

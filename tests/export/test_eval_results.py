@@ -29,3 +29,19 @@ def test_committed_results_are_on_held_out_people():
             assert {"nearest-window", "repeat-cycle-60"} <= rows, f"table {t['id']} lacks the copying baselines"
     in_sample = {t["id"] for t in results["tables"] if t.get("in_sample")}
     assert not any(p["table"] in in_sample for c in results["claims"] for p in c["parts"])
+
+
+def test_results_md_states_the_split_per_action_and_what_is_not_evaluated():
+    from pathlib import Path
+    doc = json.loads((Path(__file__).parents[1] / "fixtures" / "results_v3_tiny.json").read_text())
+    text = markdown(doc)
+    assert "## The data and the split" in text
+    section = text.split("## The data and the split")[1].split("\n## ")[0]
+    for action, v in doc["data"]["per_action"].items():
+        row = next(line for line in section.splitlines() if line.startswith(f"| {action} |"))
+        assert f"| {v['train']['takes']} |" in row and f"| {v['test']['takes']} |" in row, row
+        if not v["test"]["takes"]:
+            assert "trained on only" in row
+    assert "Not evaluated:" in section and "Horizon exceptions" in section
+    # the section is built from the document: without per-action data it says nothing rather than guess
+    assert "## The data and the split" not in markdown({**doc, "data": {}})

@@ -36,7 +36,7 @@ def _history(clip: str, start: int, frames: int) -> np.ndarray:
 # Held-out histories from the served clips: the site's default walk and a held-out dance.
 INDEX = json.loads((CLIPS_DIR / "index.json").read_text())
 WALK = INDEX["default"]["clip"]
-DANCE = next(c["name"] for c in INDEX["clips"] if c["role"] == "test" and c["action"] == "dance_salsa")
+DANCE = next(c["name"] for c in INDEX["clips"] if c["role"] == "test" and c["action"] == "dance" and c.get("subject") == 61)
 # Keyposes needs 3 keyposes in its 30-frame history (the held-out walk starts slowly), so histories
 # start at the first frame from here that the served model accepts.
 START = 15

@@ -141,3 +141,18 @@ def test_temperature_draws_follow_the_distribution_and_report_margins():
     assert sample_index(np.array([3.0]), 1.0, 0.4) == (0, np.inf)
     # nearly all mass on the largest logit at the lowest offered temperature
     assert softmax(np.array([1.0, 2.0, 0.5]), 0.05)[1] > 0.99
+
+
+def test_the_travel_follows_the_history_pace_by_hand():
+    from export.ops.keypose_travel import PACE_RANGE, pace, travel
+    table = np.array([[0.0, 0.03], [0.0, 0.05], [0.0, 0.0]])        # metres per frame, facing frame
+    walk = np.stack([np.zeros(11), np.arange(11) * 0.06], 1)        # 0.06 m/frame forward
+    # the history's labels 0 and 1 travel 0.04 m/frame on average: the pace is 0.06 / 0.04
+    assert pace(walk, [0, 1], table) == pytest.approx(1.5)
+    path = travel([1, 0], [2, 3], table, 6, scale=1.5)
+    np.testing.assert_allclose(path[:, 1], np.cumsum([0.075, 0.075, 0.045, 0.045, 0.045, 0.0]))
+    # a standing history stops the future's travel (down to the range's floor); labels that barely
+    # travel set no pace; a racing history is capped
+    assert pace(np.zeros((11, 2)), [0, 1], table) == PACE_RANGE[0]
+    assert pace(walk, [2], table) == 1.0
+    assert pace(walk * 100, [0, 1], table) == PACE_RANGE[1]

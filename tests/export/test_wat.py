@@ -116,6 +116,41 @@ def test_pairs_join_a_history_to_another_action_after_a_capped_t0(subset):
     assert bank.uncapped_t0.max() > 20 and bank.pair_t0.max() == 20
 
 
+def test_padding_follows_only_an_instance_that_ends_at_rest(clips):
+    """Eq. 7's P frames come "after reaching the motion end": a take cut while the person moves has no end,
+    so its frames past the cut are unsupervised; one that ends standing still is padded with its last pose."""
+    from export.ops.transitions import REST_SPEED, ends_at_rest
+    punch = clips["punch"]
+    moving = dataclasses.replace(punch, loops=False, repeat=None, split=Split("train", [(0, len(punch))], []))
+    held = np.concatenate([moving.positions, np.repeat(moving.positions[-1:], 20, axis=0)])
+    resting = dataclasses.replace(moving, name="punch_then_rest", positions=held,
+                                  split=Split("train", [(0, len(held))], []))
+    assert not ends_at_rest(moving.positions, 30.0) and ends_at_rest(resting.positions, 30.0)
+    # the rule on hand-made motion: a point moving at 0.9 x and 1.1 x the rest speed over the last 0.5 s
+    step = np.zeros((16, 18, 3))
+    for factor, at_rest in ((0.9, True), (1.1, False)):
+        step[:, :, 0] = np.arange(16)[:, None] * factor * REST_SPEED / 30.0
+        assert ends_at_rest(step, 30.0) == at_rest
+    cfg = override(load_config("wat_rnn.json"), **TINY)
+    method = WatMethod(cfg)
+    method.prepare([moving, resting, clips["walk"]])
+    flags = method.bank["open"].numpy()
+    lengths = method.bank["length"].numpy()
+    same = method.pair_same
+    inst = method.pairs["instance"].numpy()
+    # the walk loop never ends: every instance of it is open; the resting take's instances are closed
+    walk_action = method.actions.index("walk")
+    assert flags[method.bank["action"].numpy() == walk_action].all()
+    short = [i for i in inst[same] if lengths[i] < method.future_frames]
+    assert short, "some continuations end inside T_max"
+    idx = torch.tensor(short)
+    _, length, _, mask = method.targets(idx, torch.zeros(len(idx), dtype=torch.long), 90)
+    supervised = mask.sum(1).numpy()
+    for i, n, got in zip(short, length.numpy(), supervised):
+        assert got == (n if flags[i] else method.future_frames), (i, n, got, flags[i])
+    assert (~flags[short]).any() and flags[short].any()     # both kinds were checked
+
+
 def test_continuation_scales_stream_the_same_std_as_the_offsets_held_at_once(subset):
     from export.methods.wat import continuation_scales
     actions = sorted({c.action for c in subset})
@@ -198,7 +233,8 @@ def test_training_moves_weights_and_reports_its_losses(subset):
     model = method.build(data)
     batch = {k: v[:16] for k, v in data.tensors.items()}
     loss, logs = method.loss(model, batch, 0)
-    assert set(logs) == {"rec", "smooth", "kl", "floor"} and all(np.isfinite(list(logs.values())))
+    assert set(logs) == {"rec", "smooth", "kl", "floor", "lam", "speed", "skate"} and all(np.isfinite(list(logs.values())))
+    assert logs["speed"] > 0 and logs["lam"] == 1.0          # the served terms are on, the KL weight fixed at 1
     loss.backward()
     assert model.gate_hidden.weight.grad.abs().sum() > 0 and model.future_gru.weight_ih_l0.grad.abs().sum() > 0
 

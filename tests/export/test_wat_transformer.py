@@ -122,7 +122,7 @@ def test_training_step_reaches_every_part(clips):
     torch.nn.init.normal_(model.dec_out.weight, std=0.1)
     batch = {k: v[:16] for k, v in data.tensors.items()}
     loss, logs = method.loss(model, batch, 0)
-    assert set(logs) == {"rec", "smooth", "kl", "floor"} and all(np.isfinite(list(logs.values())))
+    assert set(logs) == {"rec", "smooth", "kl", "floor", "lam", "speed", "skate"} and all(np.isfinite(list(logs.values())))
     loss.backward()
     for part in (model.prior.tokens, model.posterior.embed, model.dec_blocks[0].cond_kv, model.z_embed, model.dec_out):
         assert part.weight.grad.abs().sum() > 0

@@ -176,7 +176,8 @@ describe('model card (numbers from results.json)', async () => {
         { id: 'a', label: 'Model A', kind: 'model' as const, group: 'a', note: '', notes: [], values: { mpjpe_h_best: { mean: 150, std: 0, n: 1 } } },
         { id: 'b', label: 'Model B', kind: 'model' as const, group: 'b', note: '', notes: [], values: { mpjpe_h_best: { mean: 250, std: 0, n: 1 } } },
       ] };
-    const all = findings({ ...results, tables: [t], claims: [], skipped: [] });
+    // older results without paired verdicts: the unpaired fallback
+    const all = findings({ ...results, tables: [t], claims: [], skipped: [], verdicts: undefined });
     expect(all.find((f) => f.text.startsWith('Model A'))!.verdict).toBe('can');
     expect(all.find((f) => f.text.startsWith('Model B'))!.verdict).toBe('cannot');
     expect(all.find((f) => f.text.startsWith('Model B'))!.text).toContain('250 mm against 200 mm');

@@ -8,6 +8,7 @@ import type { Manifest } from '../../web/src/contract/types';
 import { KeyposesPredictor } from '../../web/src/predictor/keyposes';
 import { OrtRunner, type OrtModule } from '../../web/src/predictor/ort-runner';
 import { PredictError, type History } from '../../web/src/predictor/types';
+import { PACE_RANGE, pace, travel } from '../../web/src/sampling/keyposes';
 import { loadManifest } from './helpers/models';
 import { readVector, tolerance, worstDiff } from './helpers/vectors';
 
@@ -122,5 +123,21 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
     const history = clipHistory('cmu_10_04', 0, entry!.params.history_frames);
     const missing = async (file: string) => { throw new Error(`models/${file} could not be loaded (HTTP 404)`); };
     await expect(predictor(missing).predict(history, { k: 2, seed: 0 })).rejects.toThrow(/keyposes\.centres\.json could not be loaded/);
+  });
+});
+
+describe('the travel follows the history pace (export/ops/keypose_travel.py pace)', () => {
+  const table = [0, 0.03, 0, 0.05, 0, 0];                      // metres per frame, facing frame
+  const walk = Float64Array.from({ length: 22 }, (_, i) => (i % 2 ? Math.floor(i / 2) * 0.06 : 0));
+  it('scales the table by the history speed over its own labels\' table speed, by hand', () => {
+    expect(pace(walk, [0, 1], table)).toBeCloseTo(1.5, 12);
+    const path = travel([1, 0], [2, 3], table, 6, 1.5);
+    const z = [0.075, 0.15, 0.195, 0.24, 0.285, 0.285];
+    z.forEach((v, f) => expect(path[f * 2 + 1]).toBeCloseTo(v, 12));
+  });
+  it('stops for a standing history, sets no pace for labels that barely travel, caps a racing one', () => {
+    expect(pace(new Float64Array(22), [0, 1], table)).toBe(PACE_RANGE[0]);
+    expect(pace(walk, [2], table)).toBe(1);
+    expect(pace(walk.map((v) => v * 100), [0, 1], table)).toBe(PACE_RANGE[1]);
   });
 });

@@ -70,7 +70,7 @@ if (served.length) describe('served LCP-VAE model in Node', () => {
   const p = nodePredictor(manifest, entry.id);
 
   it('predicts K = 10 futures from a test-split history, with its diversity read-out', async () => {
-    const pred = await p.predict(walkerHistory('cmu_61_04', 4, n), { k: 10, seed: 5 });
+    const pred = await p.predict(walkerHistory('cmu_61_13', 4, n), { k: 10, seed: 5 });
     expect(pred.k).toBe(10);
     expect(pred.frames).toBe(entry.params.future_frames);
     expect(pred.futures.length).toBe(10 * pred.frames * J * 3);

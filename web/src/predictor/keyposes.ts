@@ -8,7 +8,7 @@
 import { Prng } from '../rng/prng';
 import { rotateAboutY } from '../motion/facing';
 import { interpolateKeyposes, keyposeTimes } from '../sampling/keypose-interpolation';
-import { durationClass, extractKeyposes, faceForward, labelDistribution, nearestCentre, prune, travel } from '../sampling/keyposes';
+import { durationClass, extractKeyposes, faceForward, labelDistribution, nearestCentre, pace, prune, travel } from '../sampling/keyposes';
 import { sampleIndex } from '../sampling/temperature';
 import { continueHistory } from '../sampling/seam';
 import { keepBones } from '../motion/bones';
@@ -209,10 +209,17 @@ export class KeyposesPredictor implements Predictor {
       frames = r;
     }
     const cut = new Float64Array(k * horizon * s);
+    // the history's own pace on the table's velocities (export/ops/keypose_travel.py `pace`)
+    const historyRoot = new Float64Array(n * 2);
+    for (let f = 0; f < n; f++) {
+      historyRoot[f * 2] = canonical[f * s];
+      historyRoot[f * 2 + 1] = canonical[f * s + 2];
+    }
+    const scale = pace(historyRoot, obs.labels, rootVelocity);
     for (let q = 0; q < k; q++) {
       cut.set(futures.subarray(q * frames * s, (q * frames + horizon) * s), q * horizon * s);
       // the root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z
-      const path = travel(labels[q], durations[q], rootVelocity, horizon);
+      const path = travel(labels[q], durations[q], rootVelocity, horizon, scale);
       for (let f = 0; f < horizon; f++) {
         cut[(q * horizon + f) * s] = path[f * 2];
         cut[(q * horizon + f) * s + 2] = path[f * 2 + 1];
@@ -248,7 +255,8 @@ export class KeyposesPredictor implements Predictor {
     return {
       k, frames: horizon, joints: j, futures: world, lengths: Int32Array.from({ length: k }, () => horizon), samples, notes: [],
       ghosts: { frames: ghostFrames, poses: ghostPoses },
-      readouts: [{ label: 'observed keyposes', value: obs.frames.length }, { label: 'keyposes per future', value: shownTotal / k }],
+      readouts: [{ label: 'observed keyposes', value: obs.frames.length }, { label: 'keyposes per future', value: shownTotal / k },
+        { label: 'travel pace (history / training)', value: Math.round(scale * 1e4) / 1e4 }],
       margins,
     };
   }

@@ -135,18 +135,42 @@ export function labelDistribution(values: ArrayLike<number>, count: number, cent
   return out;
 }
 
+/** The history's pace within this factor of the table's; a table speed below PACE_FLOOR (m/frame) sets none. */
+export const PACE_RANGE: [number, number] = [0.25, 4.0];
+export const PACE_FLOOR = 1e-3;
+
+/**
+ * The factor on the table's velocities for a history, twin of export/ops/keypose_travel.py `pace`: the mean
+ * speed per frame of its root channel (historyRoot [n * 2], x and z per frame) over the mean table speed
+ * of its observed keypose labels; 1 where those labels barely travel, clipped to PACE_RANGE.
+ */
+export function pace(historyRoot: ArrayLike<number>, observed: number[], table: ArrayLike<number>): number {
+  const n = historyRoot.length / 2;
+  let mine = 0;
+  for (let f = 1; f < n; f++) {
+    mine += Math.hypot(historyRoot[f * 2] - historyRoot[(f - 1) * 2], historyRoot[f * 2 + 1] - historyRoot[(f - 1) * 2 + 1]);
+  }
+  mine = n > 1 ? mine / (n - 1) : 0;
+  let theirs = 0;
+  for (const l of observed) theirs += Math.hypot(table[l * 2], table[l * 2 + 1]);
+  theirs = observed.length ? theirs / observed.length : 0;
+  if (theirs < PACE_FLOOR) return 1;
+  return Math.min(Math.max(mine / theirs, PACE_RANGE[0]), PACE_RANGE[1]);
+}
+
 /**
  * The root channel [frames * 2] (x, z per frame) of a sampled future, twin of export/ops/keypose_travel.py:
  * frame t (1-based) lies in the segment whose keypose it moves towards and adds that keypose's table
- * velocity (table [K * 2], metres per frame, facing frame); past the last keypose the root holds.
+ * velocity (table [K * 2], metres per frame, facing frame) times `scale` (the history's pace); past the
+ * last keypose the root holds.
  */
-export function travel(labels: number[], durations: number[], table: ArrayLike<number>, frames: number): Float64Array {
+export function travel(labels: number[], durations: number[], table: ArrayLike<number>, frames: number, scale = 1): Float64Array {
   const steps = new Float64Array(frames * 2);
   let t = 0;
   for (let i = 0; i < labels.length && t < frames; i++) {
     for (let f = t; f < Math.min(t + durations[i], frames); f++) {
-      steps[f * 2] = table[labels[i] * 2];
-      steps[f * 2 + 1] = table[labels[i] * 2 + 1];
+      steps[f * 2] = table[labels[i] * 2] * scale;
+      steps[f * 2 + 1] = table[labels[i] * 2 + 1] * scale;
     }
     t += durations[i];
   }
