@@ -134,8 +134,9 @@ class KeyposesMethod(Method):
         # - min_observed 2 (the paper sets none; its histories are 2 s): a history's first and last
         #   frames are keyposes, so every history can be read. 3 refused 34% of held-out 1 s windows,
         #   every ballet and salsa clip at its default start;
-        # - 256 clusters (the paper: 100 on CMU, 1000 on Human3.6M): data v2 gives 12,798 training
-        #   keyposes at 0.2 m; 128 centres lay 0.42 m from their members, 256 lie 0.37 m.
+        # - 192 clusters (the paper: 100 on CMU, 1000 on Human3.6M): data v2 gives 12,798 training
+        #   keyposes at 0.2 m; 128 centres lay 0.42 m from their members, 256 lie 0.37 m, but 256 put
+        #   the step and refinement graphs at 320 KB gzipped, past Keyposes' 0.3 MB cap.
         self.threshold = float(k.get("threshold", kp.THRESHOLD))
         self.clusters = int(k.get("clusters", 128))
         self.mirror = bool(k.get("mirror", True))
