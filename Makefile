@@ -9,13 +9,14 @@ PORT ?= 4173
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 DATA ?=
 
-.PHONY: help demo test test-python test-web typecheck test-e2e models data vectors bench results deps chromium release
+.PHONY: help demo test test-python test-web typecheck test-e2e models data vectors bench results strips deps chromium release
 
 help:
 	@echo "make demo    build the site and serve it on http://127.0.0.1:$(PORT)/ (needs Node only)"
 	@echo "make test    install everything a fresh machine needs, then run every test"
 	@echo "make models  retrain and re-export everything in public/ (DATA=PATH for your own data)"
 	@echo "make bench   browser and native timings into docs/PERFORMANCE.md"
+	@echo "make strips look at the motion: held-out futures of each served model at 0-3 s, docs/strips/"
 	@echo "make release build the site into release/motion-futures-VERSION.zip (licences and notices inside)"
 
 # --- installs -----------------------------------------------------------------------------
@@ -75,6 +76,10 @@ models: data
 
 results: $(VENV)/.installed
 	$(PY) -m export results
+
+# Look at the motion: held-out walk, run, jump and dance futures of each served model at 0-3 s (docs/strips/).
+strips: $(VENV)/.installed
+	$(PY) -m export strips
 
 bench: deps
 	$(PY) -m export bench

@@ -140,6 +140,11 @@ def _bench(args) -> None:
     print(f"wrote {doc['json_path']} and docs/PERFORMANCE.md in {doc['seconds']:.0f} s")
 
 
+def _strips(args) -> None:
+    from .strips import OUT_DIR, run
+    run(args.model or None, Path(args.out) if args.out else OUT_DIR)
+
+
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python -m export", description="motion-futures: data, training, export")
     sub = p.add_subparsers(dest="command", required=True)
@@ -188,6 +193,11 @@ def parser() -> argparse.ArgumentParser:
     c.add_argument("--models-dir", help="default: public/models")
     c.add_argument("--native-only", action="store_true", help="only the native timings, as JSON to stdout")
     c.set_defaults(run=_bench)
+
+    c = sub.add_parser("strips", help="look at the motion: held-out futures at 0-3 s as pictures in docs/strips/")
+    c.add_argument("--model", action="append", help="a served model id (repeatable; default: every learned one)")
+    c.add_argument("--out", help="default: docs/strips")
+    c.set_defaults(run=_strips)
 
     for name, run, text in (("evaluate", _evaluate, "evaluate every results row on held-out people: public/results.json, "
                                                     "docs/RESULTS.md, docs/MODEL_CARD.md"),

@@ -705,7 +705,7 @@ def markdown(doc: dict) -> str:
     lines += [f"- `{mid}`: `{h}`" for mid, h in sorted(doc["models"].items())] + [""]
     if doc.get("summary"):
         lines += ["## In short", ""] + [f"- {s}" for s in doc["summary"]] + [""]
-    lines += _data(doc) + _verdicts(doc) + _claims(doc) + _copying(doc) + _shape(doc) + _realism(doc) + _rows(doc)
+    lines += _data(doc) + _targets(doc) + _verdicts(doc) + _claims(doc) + _copying(doc) + _shape(doc) + _realism(doc) + _rows(doc)
     lines += _comparisons(doc) + _variants(doc) + _sanity(doc)
     lines += _classifiers(doc)
     for t in sorted(doc["tables"], key=lambda t: bool(t.get("in_sample"))):
@@ -715,6 +715,36 @@ def markdown(doc: dict) -> str:
         lines += [f"- {s['label']} (`{s['row']}`): {s['reason']}" for s in doc["skipped"]]
         lines.append("")
     return "\n".join(lines)
+
+
+def _target_value(x: dict) -> str:
+    v = x["value"]
+    if v is None:
+        return "not measured"
+    if isinstance(v, str):
+        return v
+    unit = "×" if x["limit"].endswith("x") else ""
+    return fmt(v) + unit
+
+
+def _targets(doc: dict) -> list[str]:
+    """Issue 28's targets per served learned model: value beside limit, met or missed (export/eval/targets.py)."""
+    from .targets import targets, tally
+    rows = targets(doc)
+    if not rows:
+        return []
+    lines = ["## Futures that move like people: the targets", "",
+             "Each served learned model against the targets of \"Futures that move like people\", read from the tables "
+             "below (held-out people; the rules are in `export/eval/targets.py`). " + "; ".join(
+                 f"{label_for(doc, m)}: {t['met']} met, {t['missed']} missed" + (f", {t['not measured']} not measured"
+                                                                                 if t["not measured"] else "")
+                 for m, t in tally(rows).items()) + ".", "",
+             "| model | table | group | target | value | limit | |", "|---|---|---|---|---|---|---|"]
+    for x in rows:
+        mark = {True: "met", False: "**missed**", None: "not measured"}[x["met"]]
+        lines.append(f"| {label_for(doc, x['model'])} | `{x['table']}` | {x['group']} | {x['target']} | "
+                     f"{_target_value(x)} | {x['limit']} | {mark} |")
+    return lines + [""]
 
 
 def _data(doc: dict) -> list[str]:
