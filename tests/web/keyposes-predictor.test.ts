@@ -108,15 +108,34 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
     await expect(predictor().predict(history, { k: 2, seed: 0, controls: controls as Record<string, number | boolean> })).rejects.toThrow(message);
   });
 
-  it('a history without enough keyposes is rejected with the count and the threshold', async () => {
+  it('a still history (one pose held) is predicted, from that pose, with finite futures', async () => {
     const n = entry!.params.history_frames;
     const still = clipHistory('cmu_10_04', 0, 1);
     const positions = new Float32Array(n * J * 3);
     for (let f = 0; f < n; f++) positions.set(still.positions, f * J * 3);
-    const run = predictor().predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 });
-    await expect(run).rejects.toThrow(PredictError);
-    await expect(predictor().predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 }))
-      .rejects.toThrow(/the history yields 2 keyposes at the 0.3 m threshold; Keyposes needs at least 3/);
+    const pred = await predictor().predict({ positions, frames: n, joints: J }, { k: 2, seed: 0, horizonFrames: 30 });
+    expect(pred.futures.every(Number.isFinite)).toBe(true);
+    // the first predicted frame stays near the held pose: mean joint distance under 10 cm
+    let d = 0;
+    for (let j = 0; j < J; j++) {
+      d += Math.hypot(...[0, 1, 2].map((a) => pred.futures[j * 3 + a] - still.positions[j * 3 + a])) / J;
+    }
+    expect(d).toBeLessThan(0.1);
+  });
+
+  it('a history with fewer keyposes than the model needs is rejected with the count and the threshold', async () => {
+    // The served model needs 2 (a held pose gives 2 at its ends); a model needing 3 refuses the same history.
+    const k = entry!.params.keyposes as { threshold: number; min_observed: number };
+    const strict = { ...entry!, params: { ...entry!.params, keyposes: { ...k, min_observed: 3 } } };
+    const runner = new OrtRunner(ort as unknown as OrtModule, strict, readModelFile);
+    const p = new KeyposesPredictor({ entry: strict, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps,
+      runner, loadFile: readModelFile });
+    const n = entry!.params.history_frames;
+    const still = clipHistory('cmu_10_04', 0, 1);
+    const positions = new Float32Array(n * J * 3);
+    for (let f = 0; f < n; f++) positions.set(still.positions, f * J * 3);
+    await expect(p.predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 }))
+      .rejects.toThrow(new RegExp(`the history yields [12] keyposes at the ${k.threshold} m threshold; Keyposes needs at least 3`));
   });
 
   it('a missing centres file names the file', async () => {
