@@ -76,12 +76,17 @@ def targets(doc: dict) -> list[dict]:
             if r is None:
                 continue
             zv = next((v for v in verdicts if v["row"] == model and v["table"] == tid and v["baseline"] == "zero-velocity"), None)
-            ratio = None if zv is None or not zv["b_paired"] else zv["a_paired"] / zv["b_paired"]
+            zr = _row(t, "zero-velocity")
+            if zv is not None:
+                ratio = zv["a_paired"] / zv["b_paired"] if zv["b_paired"] else None
+            else:   # no verdict at this horizon: the table's means, when the row predicts every window
+                whole = zr is not None and not (r.get("refused") or {}).get("items", 0)
+                a, b = (_mean(r["values"], "ade"), _mean(zr["values"], "ade")) if whole else (None, None)
+                ratio = a / b if a is not None and b else None
             _check(out, model, tid, "all", "1. ADE <= 0.80x zero-velocity's", ratio, "<= 0.80x", lambda x: x <= 0.80)
             if zv is not None:
                 _check(out, model, tid, "all", "1. the difference holds (people-level bar, Holm)", zv["status"],
                        "holds", lambda s: s == "holds")
-            zr = _row(t, "zero-velocity")
             for g in r.get("by_group", {}):
                 if _whole(r, g) and zr and g in zr.get("by_group", {}):
                     a, b = _mean(r["by_group"][g]["values"], "ade"), _mean(zr["by_group"][g]["values"], "ade")

@@ -63,3 +63,13 @@ def test_the_report_prints_each_check_beside_its_limit():
     from export.eval.report import _targets
     text = "\n".join(_targets(doc))
     assert "| 3. speed follows the history (Spearman rho) | 0.300 | >= 0.6 | **missed** |" in text
+
+
+def test_without_a_verdict_the_ratio_comes_from_the_tables_means_on_every_window():
+    doc = _doc(dict(ade=0.6, bone=0.1))
+    doc["verdicts"] = []
+    rows = targets(doc)
+    assert abs(_by(rows, "1. ADE")["value"] - 0.6 / 0.7) < 1e-12
+    assert not any(x["target"].startswith("1. the difference holds") for x in rows)
+    doc["tables"][0]["rows"][2]["refused"]["items"] = 1     # a refusing row has no whole-table pair
+    assert _by(targets(doc), "1. ADE")["value"] is None
