@@ -83,7 +83,7 @@ class KeyposesPredictor(Predictor):
         keep = kp.prune(labels)
         if len(keep) < k["min_observed"]:
             raise PredictError(
-                f"the history yields {len(keep)} keyposes at the {k['threshold']} m threshold; Keyposes needs at "
+                f"the history yields {len(keep)} keypose{'' if len(keep) == 1 else 's'} at the {k['threshold']} m threshold; Keyposes needs at "
                 f"least {k['min_observed']}: choose a history with more motion")
         keep = keep[-k["max_observed"]:]
         frames = [frames[i] for i in keep]

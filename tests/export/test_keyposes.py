@@ -145,7 +145,7 @@ def test_a_held_pose_is_predicted_and_a_stricter_model_refuses_it_by_name():
     assert np.linalg.norm(pred.futures[:, 0] - still[-1], axis=-1).mean() < 0.1   # starts from the held pose
     k = ENTRY["params"]["keyposes"]
     strict = {**ENTRY, "params": {**ENTRY["params"], "keyposes": {**k, "min_observed": 3}}}
-    with pytest.raises(PredictError, match=f"the history yields [12] keyposes at the {k['threshold']} m threshold; "
+    with pytest.raises(PredictError, match=f"the history yields (1 keypose|2 keyposes) at the {k['threshold']} m threshold; "
                                            "Keyposes needs at least 3"):
         KeyposesPredictor(strict, MANIFEST, MODELS_DIR).predict(still, Request(k=2))
 

@@ -135,7 +135,7 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
     const positions = new Float32Array(n * J * 3);
     for (let f = 0; f < n; f++) positions.set(still.positions, f * J * 3);
     await expect(p.predict({ positions, frames: n, joints: J }, { k: 2, seed: 0 }))
-      .rejects.toThrow(new RegExp(`the history yields [12] keyposes at the ${k.threshold} m threshold; Keyposes needs at least 3`));
+      .rejects.toThrow(new RegExp(`the history yields (1 keypose|2 keyposes) at the ${k.threshold} m threshold; Keyposes needs at least 3`));
   });
 
   it('a missing centres file names the file', async () => {

@@ -99,7 +99,7 @@ export class KeyposesPredictor implements Predictor {
     const { labels } = nearestCentre(faced, all.length, centres, k.clusters, j);
     let keep = prune(labels);
     if (keep.length < k.min_observed) {
-      throw new PredictError(`the history yields ${keep.length} keyposes at the ${k.threshold} m threshold; Keyposes needs at `
+      throw new PredictError(`the history yields ${keep.length} keypose${keep.length === 1 ? '' : 's'} at the ${k.threshold} m threshold; Keyposes needs at `
         + `least ${k.min_observed}: choose a history with more motion`);
     }
     keep = keep.slice(-k.max_observed);
