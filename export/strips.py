@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .data.skeleton import SKELETON
+from .eval.harness import controls_of
 from .eval.realism.jump_height import hip_vertical_range
 from .eval.realism.skating import contact_speeds, median_contact_speed
 from .eval.realism.speed import root_speed_per_second
@@ -79,7 +80,7 @@ def _measures(future: np.ndarray, history: np.ndarray) -> dict:
 
 def predict_case(predictor, entry: dict, case: Case, motion: np.ndarray) -> dict:
     n = int(entry["params"]["history_frames"])
-    ids = {c["id"] for c in entry["controls"]}
+    ids = controls_of(entry)
     present = max(n, int(case.present * len(motion)))
     history, truth = motion[present - n:present], motion[present:present + FPS * SECONDS[-1]]
     horizon = FPS * SECONDS[-1] if not case.sequence else None

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..paths import DOCS_DIR, PUBLIC
 from .harness import COLUMNS
+from .targets import STATUS, group_windows, row_of, table_of, tally, targets
 
 RESULTS_JSON = PUBLIC / "results.json"
 RESULTS_MD = DOCS_DIR / "RESULTS.md"
@@ -132,17 +133,9 @@ def row_label(r: dict) -> str:
     return r["label"] + (f" — **{flag_text(r['flag'])}**" if r.get("flag") else "")
 
 
-def _table_of(doc: dict, tid: str) -> dict | None:
-    return next((t for t in doc["tables"] if t["id"] == tid), None)
-
-
-def _row_of(t: dict | None, rid: str) -> dict | None:
-    return next((r for r in (t or {}).get("rows", []) if r["id"] == rid), None)
-
-
 def ahead(doc: dict, tid: str) -> str:
     """How far ahead a table predicts, in seconds ("2 s")."""
-    t = _table_of(doc, tid)
+    t = table_of(doc, tid)
     return f"{t['horizon_frames'] / doc['fps']:g} s" if t else tid
 
 
@@ -156,7 +149,7 @@ VERDICT_WORDS = {"holds": "beats", "no difference": "is no different from", "fai
 
 
 def _verdict_flag(doc: dict, v: dict) -> str:
-    return (_row_of(_table_of(doc, v["table"]), v["row"]) or {}).get("flag", "")
+    return (row_of(table_of(doc, v["table"]), v["row"]) or {}).get("flag", "")
 
 
 def verdict_numbers(doc: dict, v: dict) -> str:
@@ -181,7 +174,7 @@ def verdict_cell(doc: dict, v: dict) -> str:
 def label_for(doc: dict, rid: str) -> str:
     """A row's label wherever the results name it (a table, or the rows not evaluated), else its id."""
     for t in doc["tables"]:
-        r = _row_of(t, rid)
+        r = row_of(t, rid)
         if r:
             return r["label"]
     return next((x["label"] for x in doc.get("skipped", []) if x["row"] == rid), rid)
@@ -279,7 +272,7 @@ def truth_beside(t: dict, r: dict, col: str) -> str:
     if r["kind"] == "oracle":
         return "—"
     if not refused(r, t):
-        return cell((_row_of(t, "oracle") or {}).get("values", {}).get(col), COLUMNS[col].unit)
+        return cell((row_of(t, "oracle") or {}).get("values", {}).get(col), COLUMNS[col].unit)
     x = ((r.get("paired") or {}).get("rows", {}).get("oracle") or {}).get(col)
     return fmt(x, COLUMNS[col].unit) if x is not None else "—"
 
@@ -345,7 +338,7 @@ def _on_accepted(doc: dict, t: dict, rows: list[dict]) -> list[str]:
                 "those windows, beside the truth and the baselines:", "",
                 "| row | " + " | ".join(label_of(c) for c in cols) + " |", "|---|" + "---|" * len(cols)]
         for x in order:
-            label = (_row_of(t, x) or {"label": x})["label"]
+            label = (row_of(t, x) or {"label": x})["label"]
             out.append(f"| {label} | " + " | ".join(fmt(paired["rows"][x].get(c), COLUMNS[c].unit) for c in cols)
                        + " |")
         out.append("")
@@ -354,15 +347,14 @@ def _on_accepted(doc: dict, t: dict, rows: list[dict]) -> list[str]:
 
 def _group_windows(r: dict, g: dict) -> str:
     """A row's windows in an action group: the items of its per-item values there, of the group's."""
-    n = next((g["values"][c]["n"] for c in ("mpjpe_cm", "ade", "length") if c in g["values"]), 0)
-    return f"{n}/{g['items']}"
+    return f"{group_windows(g)}/{g['items']}"
 
 
 def _realism_groups(doc: dict, t: dict, rows: list[dict]) -> list[str]:
     """The same measures per action group, each group over its own windows (means; the bars are in results.json)."""
     order = doc.get("data", {}).get("groups") or list(dict.fromkeys(g for r in rows for g in r.get("by_group", {})))
     joint, root = _per_second(t, "speed_ratio_s"), _per_second(t, "root_ratio_s")
-    oracle = _row_of(t, "oracle") or {}
+    oracle = row_of(t, "oracle") or {}
     out = []
     for name in order:
         have = [r for r in rows if name in r.get("by_group", {})]
@@ -381,7 +373,7 @@ def _realism_groups(doc: dict, t: dict, rows: list[dict]) -> list[str]:
         for r in have:
             g = r["by_group"][name]
             m = lambda c: fmt(g["values"][c]["mean"], COLUMNS[c].unit) if c in g["values"] else "—"
-            whole = _group_windows(r, g) == f"{g['items']}/{g['items']}"
+            whole = group_windows(g) == g["items"]
             beside = lambda c: "—" if r["kind"] == "oracle" or not whole or c not in truth \
                 else fmt(truth[c]["mean"], COLUMNS[c].unit)
             cells = [m("mpjpe_cm"), m("mpjpe_f_cm"), m("ade"), " · ".join(m(c) for c in joint) or "—",
@@ -498,8 +490,8 @@ def _copying_rule(doc: dict) -> str:
 
 
 def _shape_windows(doc: dict, s: dict) -> str:
-    t = _table_of(doc, s["table"]) or {"items": 0, "rows": []}
-    return " / ".join(windows_text(_row_of(t, x) or {"items": 0}, t) for x in (s["with"], s["without"]))
+    t = table_of(doc, s["table"]) or {"items": 0, "rows": []}
+    return " / ".join(windows_text(row_of(t, x) or {"items": 0}, t) for x in (s["with"], s["without"]))
 
 
 def _within(s: dict) -> str:
@@ -729,7 +721,6 @@ def _target_value(x: dict) -> str:
 
 def _targets(doc: dict) -> list[str]:
     """Issue 28's targets per served learned model: value beside limit, met or missed (export/eval/targets.py)."""
-    from .targets import targets, tally
     rows = targets(doc)
     if not rows:
         return []
@@ -741,7 +732,7 @@ def _targets(doc: dict) -> list[str]:
                  for m, t in tally(rows).items()) + ".", "",
              "| model | table | group | target | value | limit | |", "|---|---|---|---|---|---|---|"]
     for x in rows:
-        mark = {True: "met", False: "**missed**", None: "not measured"}[x["met"]]
+        mark = "**missed**" if x["met"] is False else STATUS[x["met"]]
         lines.append(f"| {label_for(doc, x['model'])} | `{x['table']}` | {x['group']} | {x['target']} | "
                      f"{_target_value(x)} | {x['limit']} | {mark} |")
     return lines + [""]

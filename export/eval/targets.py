@@ -27,12 +27,21 @@ WAT = ("wat-rnn", "wat-transformer")
 SAMPLING = ("wat-rnn", "wat-transformer", "lcp-vae", "keyposes")
 
 
-def _table(doc: dict, tid: str) -> dict | None:
+# How the report marks a check, and the tally's keys.
+STATUS = {True: "met", False: "missed", None: "not measured"}
+
+
+def table_of(doc: dict, tid: str) -> dict | None:
     return next((t for t in doc.get("tables", []) if t["id"] == tid), None)
 
 
-def _row(t: dict | None, rid: str) -> dict | None:
+def row_of(t: dict | None, rid: str) -> dict | None:
     return next((r for r in (t or {}).get("rows", []) if r["id"] == rid), None)
+
+
+def group_windows(g: dict) -> int:
+    """The windows a row predicts in an action group: the count of its per-item values there."""
+    return next((g["values"][c]["n"] for c in ("mpjpe_cm", "ade", "length") if c in g["values"]), 0)
 
 
 def _mean(values: dict, col: str):
@@ -43,16 +52,13 @@ def _mean(values: dict, col: str):
 def _whole(r: dict, group: str) -> bool:
     """The row predicts every window of the group (so its group means sit on the oracle's windows)."""
     g = r.get("by_group", {}).get(group)
-    if not g:
-        return False
-    n = next((g["values"][c]["n"] for c in ("mpjpe_cm", "ade", "length") if c in g["values"]), 0)
-    return n == g["items"]
+    return bool(g) and group_windows(g) == g["items"]
 
 
 def _same_windows(t: dict, r: dict, col: str) -> tuple[float | None, float | None]:
     """(row, oracle) values of `col` on the same windows: the whole table, or the row's paired set."""
     refused = (r.get("refused") or {}).get("items", 0)
-    oracle = _row(t, "oracle") or {"values": {}}
+    oracle = row_of(t, "oracle") or {"values": {}}
     if not refused:
         return _mean(r["values"], col), _mean(oracle["values"], col)
     paired = (r.get("paired") or {}).get("rows", {})
@@ -71,12 +77,12 @@ def targets(doc: dict) -> list[dict]:
     for model in served:
         tables = ["heldout_1s", "heldout_2s"] + (["heldout_5s"] if model == "keyposes" else [])
         for tid in tables:
-            t = _table(doc, tid)
-            r = _row(t, model)
+            t = table_of(doc, tid)
+            r = row_of(t, model)
             if r is None:
                 continue
             zv = next((v for v in verdicts if v["row"] == model and v["table"] == tid and v["baseline"] == "zero-velocity"), None)
-            zr = _row(t, "zero-velocity")
+            zr = row_of(t, "zero-velocity")
             if zv is not None:
                 ratio = zv["a_paired"] / zv["b_paired"] if zv["b_paired"] else None
             else:   # no verdict at this horizon: the table's means, when the row predicts every window
@@ -109,7 +115,7 @@ def targets(doc: dict) -> list[dict]:
             a, b = _same_windows(t, r, "skate")
             _check(out, model, tid, "all", "4. foot skating / captures'", a / b if a is not None and b else None,
                    "<= 2x", lambda x: x <= 2.0)
-            oracle = _row(t, "oracle")
+            oracle = row_of(t, "oracle")
             if "jump" in r.get("by_group", {}) and oracle and _whole(r, "jump"):
                 a = _mean(r["by_group"]["jump"]["values"], "hip_range")
                 b = _mean(oracle["by_group"]["jump"]["values"], "hip_range")
@@ -138,6 +144,5 @@ def tally(rows: list[dict]) -> dict[str, dict[str, int]]:
     """Per model: how many checks are met, missed and not measured."""
     out: dict[str, dict[str, int]] = {}
     for x in rows:
-        key = {True: "met", False: "missed", None: "not measured"}[x["met"]]
-        out.setdefault(x["model"], {"met": 0, "missed": 0, "not measured": 0})[key] += 1
+        out.setdefault(x["model"], dict.fromkeys(STATUS.values(), 0))[STATUS[x["met"]]] += 1
     return out
