@@ -13,6 +13,8 @@ CASES = [
     ("tests/fixtures/walk.bvh", None),
     ("tests/fixtures/walk_zup.bvh", {"up": "z"}),
     ("tests/fixtures/knee.bvh", {"joints": {"head": [None], "right_toe": [None], "left_toe": [None]}}),
+    ("tests/fixtures/six_channels.bvh", None),        # position channels on every joint replace its OFFSET
+    ("tests/fixtures/frame_time_rounded.bvh", None),  # "Frame Time: 0.0333333": all 31 frames come out
 ]
 
 

@@ -16,7 +16,10 @@ either loads in both languages or fails in both with the same message:
     Frame Time: seconds
     n lines of one number per channel, in hierarchy order
 
-Semantics are BVHLoader's: a joint's local translation is OFFSET plus its position channels, its
+Semantics: the root's local translation is OFFSET plus its position channels; a non-root joint's
+position channels replace its OFFSET on the axes they name (a rig that gives every joint 6 channels
+writes the joint's local position there, repeating the OFFSET at rest: adding the two doubles every
+bone. three.js's BVHLoader (0.187) does add them, so bvh.ts takes the OFFSET back out). A joint's
 local rotation is the product of its rotation channels in the order listed (degrees, about the
 joint's own axes), and an End Site is a fixed point named "<joint>/end".
 """
@@ -255,8 +258,10 @@ def joint_positions(bvh: Bvh) -> np.ndarray:
         for c in bvh.channels[j]:
             values = bvh.motion[:, col]
             col += 1
-            if c.endswith("position"):
+            if c.endswith("position") and parent < 0:
                 local_pos[:, "XYZ".index(c[0])] += values
+            elif c.endswith("position"):
+                local_pos[:, "XYZ".index(c[0])] = values   # replaces the OFFSET (module docstring)
             else:
                 rot = rot @ _axis_matrix(c, values)  # intrinsic: later channels turn about rotated axes
         if parent < 0:

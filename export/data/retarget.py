@@ -5,7 +5,9 @@ The TypeScript twin is web/src/motion/retarget.ts; contract/vectors/retarget.jso
 1. A joint map (contract/joint-maps/*.json, overridable by a user's small JSON) names, for each
    of the 18 project joints, the source point it follows: a source joint, an End Site
    ("Head/end"), or the mean of several ("LeftUpLeg+RightUpLeg"). The first alternative whose
-   names all exist in the file wins; `null` means "derive it" (head and toes only, see 5).
+   names all exist in the file wins; `null` means "derive it" (head and toes only, see 5). A file is
+   tried with the built-in maps of contract/joint-maps/order.json in order (a BVH: cmu-bvh, then
+   daz), on the command line and on the page alike (`pick_map`).
 2. Up axis: a z-up source is turned to y-up by (x, y, z) -> (x, z, -y) (a right-handed turn).
    Leading frames far from the rest of the take (a BVH conversion's T-pose) are dropped by rule
    (`leading_outliers`).
@@ -26,7 +28,10 @@ The TypeScript twin is web/src/motion/retarget.ts; contract/vectors/retarget.jso
 6. Ground: the clip's floor is estimated once (export/ops/floor.py: a plane through the contact
    frames' lowest foot points, robust to a T-pose frame or a glitch) and put at y = 0.
 
-Facing is left as it comes: windows are canonicalised later (ops/facing.py).
+Facing is left as it comes: windows are canonicalised later (ops/facing.py). Callers check every
+import with `body_problems` (upright: head above the root, ankles below it; human proportions):
+a file with an assumed joint order that fails is refused, a named one is warned
+(`plausibility_warning`), which names a wrong up axis and the `up` that fixes it.
 """
 from __future__ import annotations
 
@@ -45,6 +50,8 @@ FPS = 30.0
 MIN_FRAMES = 10
 MAX_FRAMES = 108_000  # one hour at 30 Hz
 JOINT_MAPS_DIR = CONTRACT_DIR / "joint-maps"
+# The maps each kind of file is tried with, in order; the page reads the same file (joint-map.ts).
+ORDER_FILE = JOINT_MAPS_DIR / "order.json"
 DERIVABLE = ("head", "right_toe", "left_toe")
 LEADING_STEPS = 10.0     # times the median step ...
 LEADING_LEGS = 0.05      # ... and leg lengths: a leading frame this far from the next is not motion
@@ -92,10 +99,16 @@ def _check(doc: dict, where: str) -> None:
             raise RetargetError(f"{where}: field orders/{count}: must list exactly {count} joint names")
 
 
+def tried_maps(kind: str) -> list[str]:
+    """The built-in maps a file of `kind` ("bvh", "asf-amc", "npz") is tried with, in order
+    (contract/joint-maps/order.json; BVH_MAPS in joint-map.ts reads the same list)."""
+    return list(json.loads(ORDER_FILE.read_text())[kind])
+
+
 def builtin_map(name: str) -> dict:
     path = JOINT_MAPS_DIR / f"{name}.json"
-    if not path.exists():
-        known = sorted(p.stem for p in JOINT_MAPS_DIR.glob("*.json"))
+    if not path.exists() or path == ORDER_FILE:
+        known = sorted(p.stem for p in JOINT_MAPS_DIR.glob("*.json") if p != ORDER_FILE)
         raise RetargetError(f"no joint map named {name!r} (built in: {', '.join(known)})")
     return json.loads(path.read_text())
 
@@ -141,8 +154,9 @@ def _key(name: str) -> str:
     return name.rsplit(":", 1)[-1].lower()
 
 
-def resolve(jmap: JointMap, names: list[str], where: str) -> list[list[int] | None]:
-    """Per project joint: the source indices whose mean it follows, or None (derived)."""
+def _resolve(jmap: JointMap, names: list[str]) -> tuple[list[list[int] | None], list[str]]:
+    """(per project joint the source indices whose mean it follows, or None (derived); the project
+    joints no alternative finds, each with what was tried)."""
     exact = {n: i for i, n in enumerate(names)}
     loose: dict[str, int] = {}
     for i, n in enumerate(names):
@@ -167,13 +181,39 @@ def resolve(jmap: JointMap, names: list[str], where: str) -> list[list[int] | No
         if not found:
             missing.append(f"{joint} (tried {', '.join(a for a in jmap.joints[joint] if a)})")
         out.append(choice)
+    return out, missing
+
+
+def _unknown(jmap: JointMap, missing: list[str], names: list[str], where: str, also: str = "") -> UnknownSkeletonError:
+    # every joint of the file, however many: a visitor needs the spine, arm and head names to write a map
+    shown = ", ".join(n for n in names if "/end" not in n)
+    return UnknownSkeletonError(
+        f"{where}: unknown skeleton for joint map {jmap.name}: no source joint for {'; '.join(missing)}.{also} "
+        f"The file's joints are: {shown}. Give a joint map (docs/BRING_YOUR_OWN.md)")
+
+
+def resolve(jmap: JointMap, names: list[str], where: str) -> list[list[int] | None]:
+    """Per project joint: the source indices whose mean it follows, or None (derived)."""
+    out, missing = _resolve(jmap, names)
     if missing:
-        shown = ", ".join(n for n in names if "/end" not in n)
-        shown = shown if len(shown) < 400 else shown[:400] + "…"
-        raise UnknownSkeletonError(
-            f"{where}: unknown skeleton for joint map {jmap.name}: no source joint for {'; '.join(missing)}. "
-            f"The file's joints are: {shown}. Give a joint map (docs/BRING_YOUR_OWN.md)")
+        raise _unknown(jmap, missing, names, where)
     return out
+
+
+def pick_map(maps: list[JointMap], names: list[str], where: str) -> JointMap:
+    """The first of `maps` whose joint names the file has (the order of tried_maps); when none fits,
+    an UnknownSkeletonError naming what the first lacks and every map tried. Twin: importBvh's choice in bvh.ts."""
+    misses = []
+    for jmap in maps:
+        missing = _resolve(jmap, names)[1]
+        if not missing:
+            return jmap
+        misses.append(missing)
+    also = "".join(f" Also tried joint map {m.name}: no source joint for {', '.join(x.split(' (')[0] for x in miss)}."
+                   for m, miss in zip(maps[1:], misses[1:]))
+    if len(maps) > 1:
+        also += f" Tried in this order: {', '.join(m.name for m in maps)}."
+    raise _unknown(maps[0], misses[0], names, where, also)
 
 
 def to_y_up(points: np.ndarray, up: str) -> np.ndarray:
@@ -187,34 +227,77 @@ def resample_points(points: np.ndarray, frame_time: float, out_fps: float = FPS)
     frames = len(points)
     if frames == 1:
         return points[:1].copy()
-    n = int(np.floor((frames - 1) * frame_time * out_fps + 1e-9)) + 1
-    # u = (k / out_fps) / frame_time, written the same way in TypeScript so both pick the same frames.
+    n = int(np.floor(_span(frames, frame_time, out_fps))) + 1
+    # u = (k / out_fps) / frame_time, written the same way in TypeScript so both pick the same frames;
+    # a last frame that the rounded Frame Time puts past the end (by more than float rounding, which
+    # is left as it always was) takes the source's last frame.
     u = (np.arange(n) / out_fps) / frame_time
+    u = np.where(u > frames - 1 + 1e-9, frames - 1.0, u)
     idx = np.minimum(np.floor(u), frames - 2).astype(int)
     w = (u - idx)[:, None, None]
     return points[idx] * (1 - w) + points[idx + 1] * w
 
 
-PLAUSIBLE_HEAD = 0.25    # the head stands at least this many leg lengths above the root
+SPAN_ROUNDING = 1e-4   # a Frame Time written to 4-6 digits (".0083333", "0.0333333") is off by up to this share
+SPAN_ROUNDING_MAX = 0.1  # output frames: never more, so a real fraction of a frame (x.25, x.5, x.75) is not rounded up
+
+
+def _span(frames: int, frame_time: float, out_fps: float) -> float:
+    """The source's duration in output frames, rounded up to a whole frame when the Frame Time's rounding
+    alone keeps it short of one (138 frames at "0.0333333" span 136.99986 frames at 30 Hz: 137, so 138 frames
+    come out, not 137). Twin: span in retarget.ts."""
+    x = (frames - 1) * frame_time * out_fps
+    up = np.ceil(x)
+    return float(up) if up - x <= max(1e-9, min(SPAN_ROUNDING * x, SPAN_ROUNDING_MAX)) else x
+
+
+PLAUSIBLE_HEAD = 0.25    # the head stands at least this many leg lengths above the root ...
+PLAUSIBLE_FEET = 0.25    # ... and the ankles this many below it
 PLAUSIBLE_SYMMETRY = 0.2  # left and right bones differ by at most this fraction
 PLAUSIBLE_LEG = 1.2       # a leg (hip-knee-ankle) is this many times longer than any arm segment
+AXES = "xyz"
 
 
-def implausible(points: np.ndarray, names: list[str], jmap: JointMap, where: str) -> list[str]:
-    """Why a body read with an *assumed* joint order cannot be a person standing as the order says
-    (empty when it can): the head must stand well above the root (median over frames), left and right
-    bones must match, and the legs must be longer than the arms' segments. A file that names its joints
-    is never second-guessed (a handstand is a real motion); one whose order was assumed is refused."""
+def _axis_words(v: np.ndarray) -> str:
+    """The file axis a direction runs along: "+y", "-z", ..."""
+    a = int(np.argmax(np.abs(v)))
+    return ("+" if v[a] > 0 else "-") + AXES[a]
+
+
+def body_problems(points: np.ndarray, names: list[str], jmap: JointMap, where: str) -> list[str]:
+    """Why the body as read (the map's joints, its `up` axis) cannot be a person standing upright with a
+    human build; empty when it can. Upright: the head (or neck) at least PLAUSIBLE_HEAD leg lengths above
+    the root and the ankles PLAUSIBLE_FEET below it (medians over frames); build: left and right bones
+    match and the legs are longer than the arms' segments. A wrong up axis fails the first two and the
+    message names the axis the body does stand along and the `up` that reads it upright.
+    Twin: bodyProblems in retarget.ts."""
     sources = resolve(jmap, names, where)
-    pts = to_y_up(np.asarray(points, dtype=np.float64), jmap.up)
+    raw = np.asarray(points, dtype=np.float64)
+    pts = to_y_up(raw, jmap.up)
     q = {j: pts[:, idx].mean(axis=1) for j, idx in zip(SKELETON.names, sources) if idx is not None}
     length = lambda a, b: float(np.median(np.linalg.norm(q[a] - q[b], axis=-1)))   # noqa: E731
     leg = np.mean([length(a, b) + length(b, c) for a, b, c in LEGS])
     out = []
     top = "head" if "head" in q else "neck"
     above = float(np.median(q[top][:, 1] - q["root"][:, 1]))
+    below = float(np.median(q["root"][:, 1] - (q["left_ankle"][:, 1] + q["right_ankle"][:, 1]) / 2))
     if not above > PLAUSIBLE_HEAD * leg:
         out.append(f"the {top} is {above:.3g} above the root, less than {PLAUSIBLE_HEAD} leg lengths ({leg:.3g})")
+    if not below > PLAUSIBLE_FEET * leg:
+        out.append(f"the ankles are {below:.3g} below the root, less than {PLAUSIBLE_FEET} leg lengths ({leg:.3g})")
+    if out:
+        # the file's own axes: along which does the body run from the feet to the head?
+        qr = {j: raw[:, idx].mean(axis=1) for j, idx in zip(SKELETON.names, sources) if idx is not None}
+        body = np.median(qr[top] - (qr["left_ankle"] + qr["right_ankle"]) / 2, axis=0)
+        along = _axis_words(body)
+        fix = {"+y": "y", "+z": "z"}.get(along)
+        if fix and fix != jmap.up:
+            out.append(f"the body stands along {along} of the file, so the file looks {fix}-up: it was read with "
+                       f"\"up\": \"{jmap.up}\" and lies flat; set \"up\": \"{fix}\" in the joint map")
+        else:
+            out.append(f"the body runs along {along} of the file from the feet to the head (upside down or lying "
+                       f"down, read with \"up\": \"{jmap.up}\"); if the file stands upright, check its up axis "
+                       "and the map's left and right joints")
     for a, b in (("hip", "knee"), ("knee", "ankle"), ("shoulder", "elbow"), ("elbow", "wrist")):
         r, l = length(f"right_{a}", f"right_{b}"), length(f"left_{a}", f"left_{b}")
         if abs(r - l) > PLAUSIBLE_SYMMETRY * (r + l) / 2:
@@ -224,6 +307,24 @@ def implausible(points: np.ndarray, names: list[str], jmap: JointMap, where: str
     if not leg > PLAUSIBLE_LEG * arm:
         out.append(f"the legs ({leg:.3g}) are not longer than {PLAUSIBLE_LEG} x the longest arm segment ({arm:.3g})")
     return out
+
+
+def implausible(points: np.ndarray, names: list[str], jmap: JointMap, where: str) -> list[str]:
+    """body_problems, for a body read with an *assumed* joint order: a caller refuses the file when any
+    is found (a folded body). A file that names its joints is only warned (`plausibility_warning`):
+    a handstand or a crawl is a real motion."""
+    return body_problems(points, names, jmap, where)
+
+
+def plausibility_warning(points: np.ndarray, names: list[str], jmap: JointMap, where: str) -> str | None:
+    """One sentence for a file whose named joints fail body_problems (None when they pass): what is
+    wrong and the fix. Every import gets it (sources.py prints it; importBvh/importAsfAmc carry it as
+    origin.warnings). Twin: plausibilityWarning in retarget.ts."""
+    problems = body_problems(points, names, jmap, where)
+    if not problems:
+        return None
+    return (f"{where}: does not look like a person standing upright with the joint map {jmap.name}: "
+            f"{'; '.join(problems)}. If that is not the motion, fix the joint map (docs/BRING_YOUR_OWN.md)")
 
 
 def leading_outliers(points: np.ndarray, sources: list[list[int] | None]) -> int:

@@ -18,7 +18,7 @@ from .asf_amc import Asf, joint_positions as asf_positions, read_amc, read_asf
 from .bvh import joint_positions, read_bvh
 from .clip import Clip, Split
 from .npz import load_npz
-from .retarget import JointMap, implausible, load_map, retarget
+from .retarget import JointMap, implausible, load_map, pick_map, plausibility_warning, retarget, tried_maps
 from ..ops.loop import repeat_cycles
 
 FPS = 30.0
@@ -91,11 +91,12 @@ class DeepMimicSource(MotionSource):
         return clip
 
 
-# The kinds of motion file a folder may hold: suffix -> (built-in joint map, dataset label).
+# The kinds of motion file a folder may hold: suffix -> (its key in contract/joint-maps/order.json, whose
+# built-in maps it is tried with in that order, as the page tries them; dataset label).
 KINDS = {
-    ".bvh": ("cmu-bvh", "BVH motion capture"),
-    ".amc": ("cmu-asf", "ASF/AMC motion capture"),
-    ".npz": ("smpl", "joint positions (npz)"),
+    ".bvh": ("bvh", "BVH motion capture"),
+    ".amc": ("asf-amc", "ASF/AMC motion capture"),
+    ".npz": ("npz", "joint positions (npz)"),
 }
 AMC_FPS = 120.0             # CMU's capture rate; a sidecar <take>.json {"fps": ...} says otherwise
 CONFIG_FILES = ("labels.json", "joint-map.json")
@@ -114,7 +115,11 @@ class FolderSource(MotionSource):
     Labels: `labels.json` in the folder maps a file (its path relative to the folder, with or
     without the suffix) to an action, or to {"action": ..., "test_only": true}; otherwise a
     file's action is the name of the first sub-folder it sits in (`walk/take1.bvh` -> walk).
-    `joint-map.json` in the folder, if present, overrides the built-in joint map of every kind.
+    Joint maps: each kind is tried with the built-in maps of contract/joint-maps/order.json in order
+    (a BVH: cmu-bvh, then daz; the page tries the same), the first whose joint names the file has
+    wins; `joint-map.json` in the folder, if present, overrides each of them.
+    Every file read is checked for a body standing upright with a human build (retarget.body_problems):
+    a wrong up axis or an ASF from another subject is printed as a warning, naming the fix.
     Every other file is skipped and named with the reason (`skipped`, printed when clips load);
     a file of a kind read here that cannot be read is an error, named.
     """
@@ -126,13 +131,15 @@ class FolderSource(MotionSource):
         self.root = Path(root)
         if joint_map is None and (self.root / "joint-map.json").exists():
             joint_map = self.root / "joint-map.json"
-        self.maps: dict[str, JointMap] = {k: load_map(KINDS[k][0], joint_map) for k in self.kinds}
+        self.maps: dict[str, list[JointMap]] = {k: [load_map(m, joint_map) for m in tried_maps(KINDS[k][0])]
+                                                for k in self.kinds}
         self._skeletons: dict[Path, Asf] = {}
+        self.warnings: list[str] = []   # one per file that fails the plausibility check, printed as read
 
     @property
     def joint_map(self) -> JointMap:
-        """The joint map of the first kind read (the only one, for a one-kind source)."""
-        return self.maps[self.kinds[0]]
+        """The first joint map tried for the first kind read (the only kind, for a one-kind source)."""
+        return self.maps[self.kinds[0]][0]
 
     def _scan(self) -> tuple[list[Path], list[Path], list[tuple[Path, str]]]:
         """(motion files read, other files they need: skeletons and sidecars, skipped files with why)."""
@@ -241,26 +248,37 @@ class FolderSource(MotionSource):
             rel = path.relative_to(self.root)
             action, test_only = self._label(rel, labels)
             kind = path.suffix.lower()
-            positions = self._positions(path)
+            positions, jmap = self._read(path)
             out.append((Clip(name=clip_name(rel), action=action, fps=FPS, positions=positions, loops=False,
                              split=Split("train", [], []),
                              source={"dataset": f"{KINDS[kind][1]} ({self.root.name})", "file": rel.as_posix(),
-                                     "license": "as given by the user", "joint_map": self.maps[kind].name}),
+                                     "license": "as given by the user", "joint_map": jmap.name}),
                         test_only))
         return out
 
+    def _warn(self, text: str | None) -> None:
+        if text:
+            self.warnings.append(text)
+            print(f"{self.root.name}: warning: {text}", file=sys.stderr)
+
     def _positions(self, path: Path) -> np.ndarray:
         """Project positions [F, 18, 3] at 30 Hz of one motion file."""
+        return self._read(path)[0]
+
+    def _read(self, path: Path) -> tuple[np.ndarray, JointMap]:
+        """Project positions [F, 18, 3] at 30 Hz of one motion file, and the joint map that read it."""
         kind = path.suffix.lower()
-        jmap = self.maps[kind]
         if kind == ".bvh":
             bvh = read_bvh(path)
-            return retarget(joint_positions(bvh), bvh.names, bvh.frame_time, jmap, str(path))
+            points = joint_positions(bvh)
+            jmap = pick_map(self.maps[kind], bvh.names, str(path))
+            self._warn(plausibility_warning(points, bvh.names, jmap, str(path)))
+            return retarget(points, bvh.names, bvh.frame_time, jmap, str(path)), jmap
         if kind == ".amc":
-            return self._amc_positions(path, jmap)
-        return _npz_positions(path, jmap)
+            return self._amc_positions(path)
+        return _npz_positions(path, self.maps[kind], self._warn)
 
-    def _amc_positions(self, path: Path, jmap: JointMap) -> np.ndarray:
+    def _amc_positions(self, path: Path) -> tuple[np.ndarray, JointMap]:
         asf_path, why = self.skeleton_of(path)
         if asf_path is None:
             raise ValueError(f"{path}: {why}")
@@ -268,7 +286,24 @@ class FolderSource(MotionSource):
             self._skeletons[asf_path] = read_asf(asf_path)
         asf = self._skeletons[asf_path]
         points = asf_positions(asf, read_amc(path, asf))
-        return retarget(points, asf.names, 1.0 / amc_fps(path), jmap, str(path))
+        jmap = pick_map(self.maps[".amc"], asf.names, str(path))
+        self._warn(skeleton_warning(asf_path, path))
+        self._warn(plausibility_warning(points, asf.names, jmap, str(path)))
+        return retarget(points, asf.names, 1.0 / amc_fps(path), jmap, str(path)), jmap
+
+
+def skeleton_warning(asf: Path, amc: Path) -> str | None:
+    """CMU names a take <subject>_<take>.amc and its skeleton <subject>.asf: an AMC moved by another
+    subject's ASF (01.asf + 05_07.amc) gets that subject's bone lengths and joint axes, a body that does
+    not fit its motion (feet under the floor), and nothing in the motion itself shows it reliably.
+    None when the names agree or either is not named that way. Twin: skeletonWarning in asf-amc.ts."""
+    subject = amc.stem.split("_", 1)[0].strip().lower() if "_" in amc.stem else ""
+    other = asf.stem.strip().lower()
+    if not (subject.isdigit() and other.isdigit()) or int(subject) == int(other):
+        return None
+    return (f"{amc}: moved by {asf.name}, the skeleton of subject {other}, but the take's name says subject "
+            f"{subject}: another subject's bone lengths and joint axes do not fit the motion (feet under the floor); "
+            f"use {subject}.asf")
 
 
 def amc_fps(path: Path) -> float:
@@ -286,8 +321,9 @@ def amc_fps(path: Path) -> float:
     return float(fps)
 
 
-def _npz_positions(path: Path, jmap: JointMap) -> np.ndarray:
+def _npz_positions(path: Path, maps: list[JointMap], warn=lambda text: None) -> tuple[np.ndarray, JointMap]:
     motion = load_npz(path)
+    jmap = pick_map(maps, motion.names, str(path)) if motion.names else maps[0]
     names = motion.names or jmap.orders.get(str(motion.points.shape[1]))
     how = (f"add 'joint_names' to the npz or a sidecar {path.with_suffix('.json').name} with \"names\" "
            "(the joints in the file's order)")
@@ -303,7 +339,9 @@ def _npz_positions(path: Path, jmap: JointMap) -> np.ndarray:
             raise ValueError(f"{path}: no joint names, and the assumed {jmap.name} order for "
                              f"{motion.points.shape[1]} joints fails a plausibility check: {'; '.join(problems)}. "
                              f"Name the joints: {how}")
-    return retarget(motion.points, names, 1.0 / motion.fps, jmap, str(path))
+    else:
+        warn(plausibility_warning(motion.points, names, jmap, str(path)))
+    return retarget(motion.points, names, 1.0 / motion.fps, jmap, str(path)), jmap
 
 
 class BvhFolderSource(FolderSource):

@@ -198,3 +198,36 @@ def test_each_asf_amc_source_reads_with_its_own_skeleton(take, asf, frames):
     assert 0.74 <= leg <= 0.90
     # metres, y up: the root stands about a leg above the floor
     assert 0.6 * leg < np.median(p[:, 0, 1]) - np.percentile(p[:, names.index("ltibia"), 1], 5) < 1.3 * leg
+
+
+# --- issue 30: an ASF that does not fit its AMC --------------------------------------------------
+
+SXAXMZ = CMU / "data/sxaxmz+CMU-Dataset-Partially-Labelled/Rotations"
+
+
+@pytest.mark.parametrize("asf, amc, warned", [
+    ("01.asf", "05_07.amc", True), ("05.asf", "05_07.amc", False), ("5.ASF", "05_07.amc", False),
+    ("tiny.asf", "tiny.amc", False), ("skeleton.asf", "05_07.amc", False), ("16.asf", "run.amc", False),
+])
+def test_another_subjects_skeleton_is_named(asf, amc, warned):
+    from export.data.sources import skeleton_warning
+    text = skeleton_warning(Path(asf), Path(amc))
+    assert (text is not None) == warned
+    if warned:
+        assert text == ("05_07.amc: moved by 01.asf, the skeleton of subject 01, but the take's name says subject 05: "
+                        "another subject's bone lengths and joint axes do not fit the motion (feet under the floor); "
+                        "use 05.asf")
+
+
+def test_the_command_line_warns_on_an_amc_moved_by_another_subjects_asf(tmp_path, capsys):
+    from export.data.sources import AsfAmcFolderSource
+    lines = (SXAXMZ / "Training/05_02 - dance, expressive arms, pirouette.amc").read_text().splitlines(keepends=True)
+    stop = next(i for i, s in enumerate(lines) if s.strip() == "161")
+    (tmp_path / "dance").mkdir()
+    (tmp_path / "dance" / "05_02.amc").write_text("".join(lines[:stop]))
+    (tmp_path / "16.asf").write_text((SXAXMZ / "asf/16.asf").read_text())   # the only skeleton: subject 16's
+    source = AsfAmcFolderSource(tmp_path)
+    clips = source.clips()
+    assert len(clips) == 1 and len(source.warnings) == 1
+    assert "05_02.amc: moved by 16.asf, the skeleton of subject 16, but the take's name says subject 05" \
+        in capsys.readouterr().err

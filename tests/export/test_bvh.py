@@ -103,3 +103,54 @@ def test_deep_nesting_is_refused_not_recursed_into_a_crash():
 def test_unreadable_path_is_named(tmp_path):
     with pytest.raises(BvhFormatError, match="missing.bvh: cannot be read"):
         read_bvh(tmp_path / "missing.bvh")
+
+
+SIX = """HIERARCHY
+ROOT Hips
+{
+  OFFSET 0 0 0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation
+  JOINT Knee
+  {
+    OFFSET 0 -10 0
+    CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation
+    End Site
+    {
+      OFFSET 0 -5 0
+    }
+  }
+}
+MOTION
+Frames: 2
+Frame Time: 0.5
+1 2 3 0 0 0 0 -10 0 0 0 0
+1 2 3 90 0 0 0 -7 4 0 0 0
+"""
+
+
+def test_position_channels_on_a_non_root_joint_replace_its_offset():
+    bvh = parse_bvh(SIX, "six.bvh")
+    p = joint_positions(bvh)
+    knee = bvh.names.index("Knee")
+    # the root still adds its channels to its OFFSET; the knee's channels are its local position
+    np.testing.assert_allclose(p[:, 0], [[1, 2, 3], [1, 2, 3]])
+    np.testing.assert_allclose(p[0, knee], [1, 2 - 10, 3])            # not 2 - 20: the OFFSET is not added
+    np.testing.assert_allclose(p[1, knee], [1 + 7, 2, 3 + 4], atol=1e-12)   # (0, -7, 4) turned by Rz(90)
+
+
+def test_a_rig_with_six_channels_on_every_joint_keeps_its_bone_lengths_and_travel():
+    """six_channels.bvh: every joint's position channels repeat its OFFSET (a game rig's way). Its bones
+    must be as long as its OFFSETs, and its body (root travel included) is walk.bvh's, in centimetres."""
+    bvh = read_bvh(FIXTURES / "six_channels.bvh")
+    assert all(len(c) == 6 for c in bvh.channels if c)
+    p = joint_positions(bvh)
+    for j, parent in enumerate(bvh.parents):
+        if parent >= 0:
+            bone = np.linalg.norm(p[:, j] - p[:, parent], axis=-1)
+            np.testing.assert_allclose(bone, np.linalg.norm(bvh.offsets[j]), rtol=0, atol=1e-9, err_msg=bvh.names[j])
+    walk = read_bvh(FIXTURES / "walk.bvh")
+    assert walk.names == bvh.names
+    # the fixtures write 4 decimals: walk.bvh's root in CMU units (5.6 cm each), so 3e-4 cm apart at most
+    np.testing.assert_allclose(p, joint_positions(walk) * (2.54 / 0.45), rtol=0, atol=1e-3)
+    travel = p[-1, 0, 2] - p[0, 0, 2]
+    assert travel == pytest.approx(180.0, abs=0.01)                   # 1.2 m/s for 1.5 s, not half of it

@@ -1,13 +1,16 @@
 """Retargeting onto the project skeleton: hand-computed poses, units, up axis, frame rate, joint maps."""
 import json
+import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from export.data.bvh import joint_positions, read_bvh
-from export.data.retarget import (MIN_FRAMES, RetargetError, UnknownSkeletonError, load_map, resample_points,
-                                  retarget)
+from export.cli import main
+from export.data.retarget import (MIN_FRAMES, RetargetError, UnknownSkeletonError, body_problems, builtin_map,
+                                  load_map, pick_map, plausibility_warning, resample_points, retarget, tried_maps)
+from export.data.sources import BvhFolderSource
 from export.data.skeleton import SKELETON
 from export.ops.floor import CONTACT_BAND, foot_height
 
@@ -194,3 +197,110 @@ def test_non_finite_points_are_refused():
     pts[3, 1, 1] = np.nan
     with pytest.raises(RetargetError, match="NaN or infinite"):
         retarget(pts, ["a", "b"], 1 / 30, load_map("cmu-bvh"), "x")
+
+
+# --- issue 30: files from other rigs ---------------------------------------------------------------
+
+ROOT = Path(__file__).resolve().parents[2]
+DAZ_TAKE = ROOT / "data/cmu/data/Przestr+motion-capture/data/13/13_41.bvh"   # a Daz-style retarget, 369 frames
+
+
+def test_a_rounded_frame_time_keeps_the_last_frame():
+    # 31 frames at "Frame Time: 0.0333333" span 29.99997 frames at 30 Hz: all 31 come out, the last the file's last
+    bvh = read_bvh(FIXTURES / "frame_time_rounded.bvh")
+    assert len(bvh) == 31 and bvh.frame_time == 0.0333333
+    points = joint_positions(bvh)
+    out = resample_points(points, bvh.frame_time)
+    assert len(out) == 31
+    np.testing.assert_array_equal(out[-1], points[-1])
+    exact = retarget(points, bvh.names, 1 / 30, load_map("cmu-bvh"), "exact")
+    np.testing.assert_allclose(run("frame_time_rounded.bvh"), exact, atol=1e-5)   # 1e-6 of a frame apart in time
+    # the issue's take: 138 frames at 0.0333333 gave "137 frames ... from 138"
+    assert len(resample_points(np.zeros((138, 1, 3)), 0.0333333)) == 138
+
+
+@pytest.mark.parametrize("frames, frame_time, expected", [
+    (8, 1 / 120, 2),          # 1.75 output frames: a real fraction is not rounded up
+    (11, 0.01, 4),            # 3 frames and a third
+    (41, 1 / 120, 11),        # exactly 10
+    (5, 0.0333, 4),           # 3.996 frames: 1e-3 of the duration short, more than a written Frame Time's rounding
+    (31, 0.0330, 30),         # 29.7 frames: no rounding explains 0.3 of a frame
+    (20001, 0.033333, 20000),  # 19999.8: never more than 0.1 frame is rounded up, however long the take
+])
+def test_frames_out_are_the_whole_output_frames_of_the_duration(frames, frame_time, expected):
+    assert len(resample_points(np.zeros((frames, 1, 3)), frame_time)) == expected
+
+
+def _points(name):
+    bvh = read_bvh(FIXTURES / name)
+    return joint_positions(bvh), bvh.names
+
+
+@pytest.mark.parametrize("name, up, fix", [("walk.bvh", "z", "y"), ("walk_zup.bvh", "y", "z")])
+def test_a_wrong_up_axis_is_warned_with_the_up_that_stands_the_body_up(name, up, fix):
+    points, names = _points(name)
+    text = plausibility_warning(points, names, load_map("cmu-bvh", {"up": up}), name)
+    assert text.startswith(f"{name}: does not look like a person standing upright")
+    assert "the head is" in text and "the ankles are" in text
+    assert f'the file looks {fix}-up: it was read with "up": "{up}" and lies flat; set "up": "{fix}"' in text
+    assert plausibility_warning(points, names, load_map("cmu-bvh", {"up": fix}), name) is None
+
+
+def test_an_upside_down_body_is_warned_without_an_up_that_would_fix_it():
+    points, names = _points("walk.bvh")
+    upside_down = points * np.array([1.0, -1.0, -1.0])       # turned 180 degrees about x
+    text = plausibility_warning(upside_down, names, load_map("cmu-bvh"), "w")
+    assert "runs along -y of the file from the feet to the head" in text and "set \"up\"" not in text
+
+
+def test_bone_proportions_are_checked():
+    points, names = _points("walk.bvh")
+    long_shin = points.copy()
+    i, knee = names.index("RightFoot"), names.index("RightLeg")
+    long_shin[:, i] = points[:, knee] + 1.5 * (points[:, i] - points[:, knee])
+    problems = body_problems(long_shin, names, load_map("cmu-bvh"), "w")
+    assert len(problems) == 1 and problems[0].startswith("the right knee-ankle bone (")
+
+
+def test_the_command_line_tries_the_pages_maps_in_the_pages_order():
+    order = json.loads((ROOT / "contract/joint-maps/order.json").read_text())
+    assert tried_maps("bvh") == order["bvh"] == ["cmu-bvh", "daz"]
+    assert tried_maps("asf-amc") == ["cmu-asf"] and tried_maps("npz") == ["smpl"]
+    # the order file is not a map: it is never offered as one
+    with pytest.raises(RetargetError, match=r"no joint map named 'order' \(built in: cmu-asf, cmu-asf-bvh, cmu-bvh, "
+                                            r"daz, smpl\)"):
+        builtin_map("order")
+    source = BvhFolderSource(FIXTURES)
+    assert [m.name for m in source.maps[".bvh"]] == order["bvh"]
+
+
+def test_the_command_line_reads_a_daz_file(tmp_path, capsys):
+    (tmp_path / "walk").mkdir()
+    shutil.copy(DAZ_TAKE, tmp_path / "walk" / "13_41.bvh")
+    assert main(["data", "--data", str(tmp_path), "--out", str(tmp_path / "out")]) == 0
+    index = json.loads((tmp_path / "out" / "index.json").read_text())
+    clip = json.loads((tmp_path / "out" / "walk_13_41.json").read_text())
+    assert [c["name"] for c in index["clips"]] == ["walk_13_41"] and clip["source"]["joint_map"] == "daz"
+    assert "warning" not in capsys.readouterr().err
+
+
+def test_an_unknown_skeleton_names_every_map_tried_and_every_joint():
+    points, names = _points("unknown_skeleton.bvh")
+    many = names + [f"Finger{i:03d}" for i in range(150)]          # a large rig: far more than 400 characters
+    points = np.concatenate([points, np.zeros((len(points), 150, 3))], axis=1)
+    with pytest.raises(UnknownSkeletonError) as e:
+        pick_map([load_map(m) for m in tried_maps("bvh")], many, "big.bvh")
+    text = str(e.value)
+    assert text.startswith("big.bvh: unknown skeleton for joint map cmu-bvh: no source joint for root (tried")
+    assert "Also tried joint map daz: no source joint for root, chest," in text
+    assert "Tried in this order: cmu-bvh, daz." in text
+    joints = [n for n in many if "/end" not in n]                 # End Sites are not joints
+    assert "The file's joints are: " + ", ".join(joints) + ". Give a joint map (docs/BRING_YOUR_OWN.md)" in text
+    assert "…" not in text
+
+
+def test_a_daz_skeleton_picks_the_daz_map():
+    bvh = read_bvh(DAZ_TAKE)
+    assert pick_map([load_map(m) for m in tried_maps("bvh")], bvh.names, "d").name == "daz"
+    points, names = _points("walk.bvh")
+    assert pick_map([load_map(m) for m in tried_maps("bvh")], names, "w").name == "cmu-bvh"

@@ -4,9 +4,9 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { ClipIndex } from '../../web/src/contract/types';
-import { asfAmcPoints, asfAmcSource, CMU_FPS, importAsfAmc, parseAmc, parseAsf } from '../../web/src/motion/asf-amc';
+import { asfAmcPoints, asfAmcSource, CMU_FPS, importAsfAmc, parseAmc, parseAsf, skeletonWarning } from '../../web/src/motion/asf-amc';
 import { bvhPoints, importBvh, MotionImportError, type ImportProblem } from '../../web/src/motion/bvh';
-import { BUILTIN_MAPS, BVH_MAPS, loadJointMap } from '../../web/src/motion/joint-map';
+import { ASF_AMC_MAPS, BUILTIN_MAPS, BVH_MAPS, loadJointMap } from '../../web/src/motion/joint-map';
 import { readVector, tolerance, worstDiff } from './helpers/vectors';
 
 const root = new URL('../../', import.meta.url);
@@ -277,5 +277,29 @@ describe('take 05_02 read as cgspeed BVH and as ASF/AMC', () => {
     }
     console.info(`05_02 raw points: max |ASF - BVH| root and legs ${worst.toExponential(2)} m`);
     expect(worst).toBeLessThan(1e-3);
+  });
+});
+
+describe('an ASF that does not fit its AMC (issue 30)', () => {
+  it('another subject\'s skeleton is named, as export/data/sources.py names it', () => {
+    expect(skeletonWarning('01.asf', '05_07.amc')).toBe('05_07.amc: moved by 01.asf, the skeleton of subject 01, but the take\'s name '
+      + 'says subject 05: another subject\'s bone lengths and joint axes do not fit the motion (feet under the floor); use 05.asf');
+    for (const [asf, amc] of [['05.asf', '05_07.amc'], ['dir/5.ASF', 'dir/05_07.amc'], ['tiny.asf', 'tiny.amc'], ['skeleton.asf', '05_07.amc'], ['16.asf', 'run.amc']]) {
+      expect(skeletonWarning(asf, amc)).toBeNull();
+    }
+  });
+
+  it('an import moved by another subject\'s ASF carries the warning; its own ASF imports with none', () => {
+    const c = vector.cases.find((k) => k.name.startsWith('cmu'))!;
+    expect(importAsfAmc(c.asf, c.amc, '05.asf', '05_02.amc', { skeleton }).origin.warnings).toEqual([]);
+    const m = importAsfAmc(c.asf, c.amc, '16.asf', '05_02.amc', { skeleton });
+    expect(m.origin.warnings).toEqual([skeletonWarning('16.asf', '05_02.amc')]);
+    expect(m.frames).toBeGreaterThan(0);
+  });
+
+  it('an ASF/AMC pair is tried with the maps of contract/joint-maps/order.json', () => {
+    const order = JSON.parse(read('contract/joint-maps/order.json')) as Record<string, string[]>;
+    expect(ASF_AMC_MAPS).toEqual(order['asf-amc']);
+    expect(BVH_MAPS).toEqual(order.bvh);
   });
 });

@@ -2,7 +2,7 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { ClipIndex } from '../../web/src/contract/types';
-import { checkBvh, importBvh, motionName, MotionImportError, type ImportProblem } from '../../web/src/motion/bvh';
+import { bvhPoints, checkBvh, importBvh, motionName, MotionImportError, type ImportProblem } from '../../web/src/motion/bvh';
 
 const root = new URL('../../', import.meta.url);
 const read = (rel: string) => readFileSync(new URL(rel, root), 'utf8');
@@ -104,5 +104,79 @@ describe('bad input is named', () => {
     expect(o.channels).toBe(78);
     expect(o.names).toContain('Head/end');
     expect(o.names.filter((_, i) => o.endSite[i]).length).toBe(5);
+  });
+});
+
+describe('other rigs (issue 30)', () => {
+  const SIX = ['HIERARCHY', 'ROOT Hips', '{', '  OFFSET 0 0 0', '  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation',
+    '  JOINT Knee', '  {', '    OFFSET 0 -10 0', '    CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation',
+    '    End Site', '    {', '      OFFSET 0 -5 0', '    }', '  }', '}', 'MOTION', 'Frames: 2', 'Frame Time: 0.5',
+    '1 2 3 0 0 0 0 -10 0 0 0 0', '1 2 3 90 0 0 0 -7 4 0 0 0', ''].join('\n');
+
+  it('position channels on a non-root joint replace its OFFSET (three.js adds them; bvh.ts takes it back out)', () => {
+    const p = bvhPoints(SIX, 'six.bvh').points;  // [2 frames][3 points][3]
+    const at = (f: number, j: number) => Array.from(p.slice((f * 3 + j) * 3, (f * 3 + j) * 3 + 3));
+    expect(at(0, 0)).toEqual([1, 2, 3]);                       // the root still adds its channels to its OFFSET
+    expect(at(0, 1)).toEqual([1, 2 - 10, 3]);                  // not 2 - 20
+    [1 + 7, 2, 3 + 4].forEach((v, c) => expect(at(1, 1)[c]).toBeCloseTo(v, 5));   // (0, -7, 4) turned by Rz(90)
+  });
+
+  it('a rig with 6 channels on every joint keeps its bone lengths and its travel', () => {
+    const text = read('tests/fixtures/six_channels.bvh');
+    const outline = checkBvh(text, 'six_channels.bvh');
+    expect(outline.jointChannels.filter((c) => c.length).every((c) => c.length === 6)).toBe(true);
+    const src = bvhPoints(text, 'six_channels.bvh');
+    const N = src.names.length;
+    const offsets = [...text.matchAll(/OFFSET (\S+) (\S+) (\S+)/g)].map((m) => Math.hypot(Number(m[1]), Number(m[2]), Number(m[3])));
+    expect(offsets.length).toBe(N);
+    let worst = 0;
+    for (let f = 0; f < src.frames; f++) {
+      for (let j = 1; j < N; j++) {
+        const a = (f * N + j) * 3;
+        const b = (f * N + outline.parents[j]) * 3;
+        const bone = Math.hypot(src.points[a] - src.points[b], src.points[a + 1] - src.points[b + 1], src.points[a + 2] - src.points[b + 2]);
+        worst = Math.max(worst, Math.abs(bone - offsets[j]));
+      }
+    }
+    console.info(`six_channels.bvh: max |bone - OFFSET| = ${worst.toExponential(2)} cm`);
+    expect(worst).toBeLessThan(1e-4);   // cm; three.js keeps float32 tracks
+    const travel = src.points[((src.frames - 1) * N) * 3 + 2] - src.points[2];
+    expect(travel).toBeCloseTo(180, 2);   // 1.2 m/s for 1.5 s, not half of it
+    // and it retargets to the same motion as walk.bvh (units do not matter)
+    const six = importBvh(text, 'six.bvh', { skeleton });
+    const three = importBvh(walk, 'walk.bvh', { skeleton });
+    expect(six.frames).toBe(three.frames);
+    expect(Math.max(...six.positions.map((v, i) => Math.abs(v - three.positions[i])))).toBeLessThan(1e-4);
+  });
+
+  it('a rounded Frame Time keeps the last frame', () => {
+    const m = importBvh(read('tests/fixtures/frame_time_rounded.bvh'), 'rounded.bvh', { skeleton });
+    expect(m.origin.sourceFrames).toBe(31);
+    expect(m.frames).toBe(31);
+  });
+
+  it('a y-up file read with "up": "z" imports with a warning that names the fix; the right up has none', () => {
+    const flat = importBvh(walk, 'walk.bvh', { skeleton, jointMap: { up: 'z' }, jointMapName: 'map.json' });
+    expect(flat.origin.warnings.length).toBe(1);
+    expect(flat.origin.warnings[0]).toMatch(/^walk\.bvh: does not look like a person standing upright with the joint map cmu-bvh \+ map\.json: /);
+    expect(flat.origin.warnings[0]).toContain('the file looks y-up: it was read with "up": "z" and lies flat; set "up": "y" in the joint map');
+    expect(flat.origin.warnings[0]).toContain('(bring-your-own.html#joint-maps)');
+    expect(importBvh(walk, 'walk.bvh', { skeleton }).origin.warnings).toEqual([]);
+    expect(importBvh(read('tests/fixtures/walk_zup.bvh'), 'z.bvh', { skeleton, jointMap: { up: 'z' } }).origin.warnings).toEqual([]);
+    expect(importBvh(read('tests/fixtures/walk_zup.bvh'), 'z.bvh', { skeleton }).origin.warnings[0]).toContain('set "up": "z"');
+  });
+
+  it('an unknown skeleton names every map tried and every joint, and links the served guide', () => {
+    const extra = Array.from({ length: 150 }, (_, i) => `Finger${String(i).padStart(3, '0')}`);
+    const big = read('tests/fixtures/unknown_skeleton.bvh').replace('JOINT J1\n', `${extra.map((n) => `JOINT ${n}\n  {\n  OFFSET 0 0 0\n  CHANNELS 0\n  End Site\n  {\n  OFFSET 0 1 0\n  }\n  }\n`).join('')}JOINT J1\n`);
+    let message = '';
+    try { importBvh(big, 'big.bvh', { skeleton }); } catch (err) { message = (err as Error).message; }
+    expect(message).toMatch(/^big\.bvh: unknown skeleton for joint map cmu-bvh: no source joint for root \(tried/);
+    expect(message).toContain('Also tried joint map daz: no source joint for root, chest,');
+    expect(message).toContain('Tried in this order: cmu-bvh, daz.');
+    expect(message).toContain(extra.join(', '));
+    expect(message).not.toContain('…');
+    expect(message.endsWith('Give a joint map (bring-your-own.html#joint-maps)')).toBe(true);
+    expect(message).not.toContain('docs/BRING_YOUR_OWN.md');
   });
 });

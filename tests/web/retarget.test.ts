@@ -78,3 +78,21 @@ describe('retargeting by hand', () => {
     expect(out.points[2 * 3 + 1]).toBeCloseTo(src[i * 3 + 1] * (1 - (u - i)) + src[(i + 1) * 3 + 1] * (u - i), 12);
   });
 });
+
+describe('frames out of a rounded Frame Time (issue 30; the same cases as tests/export/test_retarget.py)', () => {
+  const cases: [number, number, number][] = [
+    [31, 0.0333333, 31], [138, 0.0333333, 138], [8, 1 / 120, 2], [11, 0.01, 4], [41, 1 / 120, 11],
+    [5, 0.0333, 4], [31, 0.033, 30], [20001, 0.033333, 20000],
+  ];
+  for (const [frames, frameTime, expected] of cases) {
+    it(`${frames} frames ${frameTime} s apart -> ${expected} at 30 Hz`, () => {
+      expect(resamplePoints(new Float64Array(frames * 3), frames, 3, frameTime).frames).toBe(expected);
+    });
+  }
+
+  it('the last frame past the end by the rounding is the source\'s last frame', () => {
+    const src = Float64Array.from({ length: 31 * 3 }, (_, i) => i);
+    const out = resamplePoints(src, 31, 3, 0.0333333);
+    expect(Array.from(out.points.slice(30 * 3))).toEqual(Array.from(src.slice(30 * 3)));
+  });
+});

@@ -8,8 +8,8 @@
 // one file unit is 0.0254 / L metres for ":units length L" (CMU's 0.45: 1/0.45 inch).
 import type { Skeleton } from '../contract/types';
 import { MAX_BYTES, MAX_SOURCE_FRAMES, MotionImportError, motionName, type ImportedMotion, type ImportOptions } from './bvh';
-import { loadJointMap } from './joint-map';
-import { MIN_FRAMES, RetargetError, retarget, type SourcePoints } from './retarget';
+import { ASF_AMC_MAPS, loadJointMap, type JointMap } from './joint-map';
+import { MIN_FRAMES, pickMap, plausibilityWarning, RetargetError, retarget, type SourcePoints } from './retarget';
 
 export const INCH = 0.0254;
 /** The same bone limit as export/data/asf_amc.py: more is not a body skeleton. */
@@ -437,9 +437,9 @@ export interface AsfAmcOptions extends ImportOptions {
  *  user's override on top of it); throws MotionImportError only. `origin.file` is the AMC. */
 export function importAsfAmc(asfText: string, amcText: string, asfFile: string, amcFile: string, options: AsfAmcOptions): ImportedMotion {
   const skeleton: Skeleton = options.skeleton;
-  let map;
+  let maps: JointMap[];
   try {
-    map = loadJointMap('cmu-asf', skeleton.joints, options.jointMap, options.jointMapName ?? 'joint map');
+    maps = ASF_AMC_MAPS.map((base) => loadJointMap(base, skeleton.joints, options.jointMap, options.jointMapName ?? 'joint map'));
   } catch (err) {
     throw new MotionImportError((err as Error).message, 'bad-joint-map');
   }
@@ -450,7 +450,11 @@ export function importAsfAmc(asfText: string, amcText: string, asfFile: string, 
   }
   const src = asfAmcSource(asfText, amcText, asfFile, amcFile, fps);
   let out;
+  let map: JointMap;
+  const warnings: string[] = [];
   try {
+    map = pickMap(maps, src.names, skeleton.joints, amcFile);
+    for (const w of [skeletonWarning(asfFile, amcFile), plausibilityWarning(src, map, skeleton.joints, amcFile)]) if (w) warnings.push(w);
     out = retarget(src, map, skeleton, amcFile, options.minFrames ?? MIN_FRAMES);
   } catch (err) {
     if (err instanceof RetargetError) throw new MotionImportError(err.message, err.kind);
@@ -465,7 +469,22 @@ export function importAsfAmc(asfText: string, amcText: string, asfFile: string, 
     frames: out.frames, joints: skeleton.joints.length, positions, loops: false, role: 'test', train: [],
     test: [[0, out.frames]], origin: {
       kind: 'dropped-file', file: amcFile, format: 'asf-amc', sourceFrames: src.frames, sourceFps: fps,
-      jointMap: map.name, groundTruth: false,
+      jointMap: map.name, groundTruth: false, warnings,
     },
   };
+}
+
+/** CMU names a take <subject>_<take>.amc and its skeleton <subject>.asf: an AMC moved by another
+ *  subject's ASF (01.asf + 05_07.amc) gets that subject's bone lengths and joint axes, which do not fit
+ *  the motion, and nothing in the motion itself shows it reliably. null when the names agree or either is
+ *  not named that way. Twin of export/data/sources.py skeleton_warning. */
+export function skeletonWarning(asfFile: string, amcFile: string): string | null {
+  const stem = (f: string) => f.replace(/^.*[\\/]/, '').replace(/\.[^.]*$/, '');
+  const take = stem(amcFile);
+  const subject = take.includes('_') ? take.split('_')[0].trim().toLowerCase() : '';
+  const other = stem(asfFile).trim().toLowerCase();
+  if (!/^[0-9]+$/.test(subject) || !/^[0-9]+$/.test(other) || Number(subject) === Number(other)) return null;
+  const asfName = asfFile.replace(/^.*[\\/]/, '');
+  return `${amcFile}: moved by ${asfName}, the skeleton of subject ${other}, but the take's name says subject ${subject}: `
+    + `another subject's bone lengths and joint axes do not fit the motion (feet under the floor); use ${subject}.asf`;
 }

@@ -2,12 +2,14 @@
 // The text is checked against the same line grammar as export/data/bvh.py first (BVHLoader itself
 // only logs to the console and throws TypeErrors on bad input), then read with three.js's
 // BVHLoader, put through forward kinematics, and retargeted (retarget.ts) with a joint map.
+// Position channels on a non-root joint replace its OFFSET (export/data/bvh.py says why); BVHLoader
+// adds the two, so bvhPoints takes the OFFSET back out of those axes.
 import { BVHLoader } from 'three/examples/jsm/loaders/BVHLoader.js';
 import type { Bone, QuaternionKeyframeTrack, VectorKeyframeTrack } from 'three';
 import type { Skeleton } from '../contract/types';
 import type { Motion } from './clip';
 import { BVH_MAPS, JointMapError, loadJointMap, type JointMap } from './joint-map';
-import { MIN_FRAMES, RetargetError, resolveJoints, retarget, type SourcePoints } from './retarget';
+import { MIN_FRAMES, pickMap, plausibilityWarning, RetargetError, retarget, type SourcePoints } from './retarget';
 
 // The same limits as export/data/bvh.py: a hostile or accidental file must not exhaust the tab.
 export const MAX_JOINTS = 1000;
@@ -35,6 +37,8 @@ export interface BvhOutline {
   parents: number[];
   /** True for End Sites (no channels). */
   endSite: boolean[];
+  /** Each joint's channel names in file order ([] for End Sites). */
+  jointChannels: string[][];
   channels: number;
   frames: number;
   frameTime: number;
@@ -67,6 +71,7 @@ export function checkBvh(text: string, where: string): BvhOutline {
   const names: string[] = [];
   const parents: number[] = [];
   const endSites: boolean[] = [];
+  const jointChannels: string[][] = [];
   let channels = 0;
   const short = (s: string) => s.slice(0, 40);
 
@@ -101,6 +106,7 @@ export function checkBvh(text: string, where: string): BvhOutline {
     names.push(name);
     parents.push(parent);
     endSites.push(endSite);
+    jointChannels.push([]);
     let [m, s] = next('"{"');
     if (s !== '{') throw fail(m, `expected "{" on its own line after "${short(t)}"`);
     [m, s] = next('OFFSET');
@@ -121,6 +127,7 @@ export function checkBvh(text: string, where: string): BvhOutline {
     const bad = list.find((c) => !CHANNELS.includes(c));
     if (bad !== undefined) throw fail(m, `unknown channel "${bad}" (expected ${CHANNELS.join(', ')})`);
     channels += list.length;
+    jointChannels[index] = list;
     stack.push({ index, depth });
   };
   openNode(next('"ROOT name"'), -1, 0);
@@ -162,7 +169,7 @@ export function checkBvh(text: string, where: string): BvhOutline {
     }
   }
   return {
-    names, parents, endSite: endSites, channels, frames, frameTime,
+    names, parents, endSite: endSites, jointChannels, channels, frames, frameTime,
     hierarchy: lines.slice(0, motionAt).map(([, l]) => l), rows: lines.slice(firstRow).map(([, l]) => l),
   };
 }
@@ -214,10 +221,13 @@ export function bvhPoints(text: string, where: string): SourcePoints {
     const p = outline.parents[j];
     const { pos, rot } = local[j];
     const off = bones[j].position;
+    // BVHLoader's position track is OFFSET + channel; on a non-root joint the channel alone is the position
+    const own = outline.jointChannels[j];
+    const [sx, sy, sz] = ['X', 'Y', 'Z'].map((a) => (p >= 0 && own.includes(`${a}position`) ? 1 : 0));
     for (let f = 0; f < F; f++) {
-      const lx = pos ? pos[f * 3] : off.x;
-      const ly = pos ? pos[f * 3 + 1] : off.y;
-      const lz = pos ? pos[f * 3 + 2] : off.z;
+      const lx = pos ? pos[f * 3] - sx * off.x : off.x;
+      const ly = pos ? pos[f * 3 + 1] - sy * off.y : off.y;
+      const lz = pos ? pos[f * 3 + 2] - sz * off.z : off.z;
       const qx = rot ? rot[f * 4] : 0;
       const qy = rot ? rot[f * 4 + 1] : 0;
       const qz = rot ? rot[f * 4 + 2] : 0;
@@ -258,6 +268,9 @@ export interface ImportedMotion extends Motion {
     jointMap: string;
     /** The frames after a history are the file's own continuation, not a held-out test set. */
     groundTruth: false;
+    /** Imported, but doubtful: each a sentence naming the problem and the fix (a wrong up axis, a body
+     *  without a human build, another subject's ASF); empty when the file looks right. */
+    warnings: string[];
   };
 }
 
@@ -277,16 +290,6 @@ export function motionName(file: string): string {
   return stem.toLowerCase().replace(/[^a-z0-9_.-]+/g, '_').replace(/^[_.-]+/, '') || 'dropped';
 }
 
-function resolves(map: JointMap, names: string[], joints: string[]): boolean {
-  try {
-    resolveJoints(map, names, joints, '');
-    return true;
-  } catch (err) {
-    if (err instanceof RetargetError) return false;
-    throw err;
-  }
-}
-
 /** BVH text -> ImportedMotion at 30 Hz on the project skeleton; throws MotionImportError only. */
 export function importBvh(text: string, file: string, options: ImportOptions): ImportedMotion {
   const { skeleton } = options;
@@ -298,10 +301,14 @@ export function importBvh(text: string, file: string, options: ImportOptions): I
     throw new MotionImportError((err as Error).message, 'bad-joint-map');
   }
   const src = bvhPoints(text, file);
-  // the first map whose joint names the file has; when none fits, the first (cmu-bvh) names what is missing
-  const map = maps.find((m) => resolves(m, src.names, skeleton.joints)) ?? maps[0];
   let out;
+  let map: JointMap;
+  let warning: string | null;
   try {
+    // the first map whose joint names the file has; when none fits, the message names what the first
+    // (cmu-bvh) lacks and every map tried
+    map = pickMap(maps, src.names, skeleton.joints, file);
+    warning = plausibilityWarning(src, map, skeleton.joints, file);
     out = retarget(src, map, skeleton, file, options.minFrames ?? MIN_FRAMES);
   } catch (err) {
     if (err instanceof RetargetError) throw new MotionImportError(err.message, err.kind);
@@ -316,7 +323,7 @@ export function importBvh(text: string, file: string, options: ImportOptions): I
     frames: out.frames, joints: skeleton.joints.length, positions, loops: false, role: 'test', train: [],
     test: [[0, out.frames]], origin: {
       kind: 'dropped-file', file, format: 'bvh', sourceFrames: src.frames, sourceFps: 1 / src.frameTime,
-      jointMap: map.name, groundTruth: false,
+      jointMap: map.name, groundTruth: false, warnings: warning ? [warning] : [],
     },
   };
 }

@@ -3,6 +3,7 @@
 import cmuAsf from '../../../contract/joint-maps/cmu-asf.json';
 import cmuBvh from '../../../contract/joint-maps/cmu-bvh.json';
 import daz from '../../../contract/joint-maps/daz.json';
+import order from '../../../contract/joint-maps/order.json';
 import smpl from '../../../contract/joint-maps/smpl.json';
 
 export type Alternative = string | null;
@@ -34,8 +35,11 @@ export const BUILTIN_MAPS: Record<string, JointMapDoc> = {
 };
 
 /** The built-in maps a dropped BVH is tried with, in this order: the first whose joint names the file
- *  has wins (cmu-bvh first, so CMU-style files read as before; then Daz-style skeletons). */
-export const BVH_MAPS = ['cmu-bvh', 'daz'];
+ *  has wins (cmu-bvh first, so CMU-style files read as before; then Daz-style skeletons). The list is
+ *  contract/joint-maps/order.json's, which the command line reads too (retarget.py tried_maps). */
+export const BVH_MAPS: readonly string[] = order.bvh;
+/** The same for an ASF/AMC pair. */
+export const ASF_AMC_MAPS: readonly string[] = order['asf-amc'];
 
 /** Joints whose point may be derived when the source lacks it (alternative null). */
 export const DERIVABLE = ['head', 'right_toe', 'left_toe'];

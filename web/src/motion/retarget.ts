@@ -29,8 +29,12 @@ export interface SourcePoints {
 
 const key = (name: string) => name.slice(name.lastIndexOf(':') + 1).toLowerCase();
 
-/** Per project joint: the source indices whose mean it follows, or null (derived). */
-export function resolveJoints(map: JointMap, names: readonly string[], projectJoints: readonly string[], where: string): (number[] | null)[] {
+/** The served guide's section on joint maps (web/bring-your-own.html, a relative URL the panel links). */
+export const GUIDE_MAPS = 'bring-your-own.html#joint-maps';
+
+/** Per project joint the source indices whose mean it follows, or null (derived); and the project
+ *  joints no alternative finds, each with what was tried. */
+function findJoints(map: JointMap, names: readonly string[], projectJoints: readonly string[]): { out: (number[] | null)[]; missing: string[] } {
   const exact = new Map<string, number>();
   const loose = new Map<string, number>();
   names.forEach((n, i) => {
@@ -48,22 +52,59 @@ export function resolveJoints(map: JointMap, names: readonly string[], projectJo
     missing.push(`${joint} (tried ${map.joints[joint].filter((a) => a).join(', ')})`);
     return null;
   });
-  if (missing.length) {
-    let shown = names.filter((n) => !n.includes('/end')).join(', ');
-    if (shown.length >= 400) shown = `${shown.slice(0, 400)}…`;
-    throw new RetargetError(`${where}: unknown skeleton for joint map ${map.name}: no source joint for ${missing.join('; ')}. `
-      + `The file's joints are: ${shown}. Give a joint map (docs/BRING_YOUR_OWN.md)`, 'unknown-skeleton');
-  }
+  return { out, missing };
+}
+
+function unknownSkeleton(map: JointMap, missing: string[], names: readonly string[], where: string, also = ''): RetargetError {
+  // every joint of the file, however many: a visitor needs the spine, arm and head names to write a map
+  const shown = names.filter((n) => !n.includes('/end')).join(', ');
+  return new RetargetError(`${where}: unknown skeleton for joint map ${map.name}: no source joint for ${missing.join('; ')}.${also} `
+    + `The file's joints are: ${shown}. Give a joint map (${GUIDE_MAPS})`, 'unknown-skeleton');
+}
+
+/** Per project joint: the source indices whose mean it follows, or null (derived). */
+export function resolveJoints(map: JointMap, names: readonly string[], projectJoints: readonly string[], where: string): (number[] | null)[] {
+  const { out, missing } = findJoints(map, names, projectJoints);
+  if (missing.length) throw unknownSkeleton(map, missing, names, where);
   return out;
+}
+
+/** The first of `maps` whose joint names the file has (the order of joint-map.ts BVH_MAPS); when none
+ *  fits, a RetargetError naming what the first lacks and every map tried. Twin of retarget.py pick_map. */
+export function pickMap(maps: readonly JointMap[], names: readonly string[], projectJoints: readonly string[], where: string): JointMap {
+  const misses: string[][] = [];
+  for (const map of maps) {
+    const { missing } = findJoints(map, names, projectJoints);
+    if (!missing.length) return map;
+    misses.push(missing);
+  }
+  let also = maps.slice(1).map((m, i) => ` Also tried joint map ${m.name}: no source joint for ${misses[i + 1].map((x) => x.split(' (')[0]).join(', ')}.`).join('');
+  if (maps.length > 1) also += ` Tried in this order: ${maps.map((m) => m.name).join(', ')}.`;
+  throw unknownSkeleton(maps[0], misses[0], names, where, also);
+}
+
+export const SPAN_ROUNDING = 1e-4;
+export const SPAN_ROUNDING_MAX = 0.1;
+
+/** The source's duration in output frames, rounded up to a whole frame when the Frame Time's rounding
+ *  alone keeps it short of one (138 frames at "0.0333333" span 136.99986 frames at 30 Hz: 137, so 138
+ *  frames come out): within SPAN_ROUNDING of the duration, never more than SPAN_ROUNDING_MAX of a frame.
+ *  Twin of retarget.py _span. */
+export function span(frames: number, frameTime: number, outFps: number): number {
+  const x = (frames - 1) * frameTime * outFps;
+  const up = Math.ceil(x);
+  return up - x <= Math.max(1e-9, Math.min(SPAN_ROUNDING * x, SPAN_ROUNDING_MAX)) ? up : x;
 }
 
 /** Linear interpolation in time to `outFps` over the source's duration (same arithmetic as Python). */
 export function resamplePoints(src: Float64Array, frames: number, width: number, frameTime: number, outFps = FPS): { points: Float64Array; frames: number } {
   if (frames === 1) return { points: src.slice(0, width), frames: 1 };
-  const n = Math.floor((frames - 1) * frameTime * outFps + 1e-9) + 1;
+  const n = Math.floor(span(frames, frameTime, outFps)) + 1;
   const out = new Float64Array(n * width);
   for (let k = 0; k < n; k++) {
-    const u = (k / outFps) / frameTime;
+    // a last frame that the rounded Frame Time puts past the end (by more than float rounding) is the last frame
+    let u = (k / outFps) / frameTime;
+    if (u > frames - 1 + 1e-9) u = frames - 1;
     const i = Math.min(Math.floor(u), frames - 2);
     const w = u - i;
     const a = i * width;
@@ -229,4 +270,86 @@ export function retarget(
     }
   }
   return { positions: putOnFloor(out, F, skeleton), frames: F };
+}
+
+export const PLAUSIBLE_HEAD = 0.25; // the head stands at least this many leg lengths above the root ...
+export const PLAUSIBLE_FEET = 0.25; // ... and the ankles this many below it
+export const PLAUSIBLE_SYMMETRY = 0.2; // left and right bones differ by at most this fraction
+export const PLAUSIBLE_LEG = 1.2; // a leg (hip-knee-ankle) is this many times longer than any arm segment
+
+/** Python's format(x, '.3g'), so both languages word a problem alike. */
+export function g3(x: number): string {
+  if (x === 0) return '0';
+  const [m, e] = x.toExponential(2).split('e');
+  const exp = Number(e);
+  if (exp < -4 || exp >= 3) return `${m.replace(/\.?0+$/, '')}e${exp < 0 ? '-' : '+'}${String(Math.abs(exp)).padStart(2, '0')}`;
+  return String(Number(x.toPrecision(3)));
+}
+
+/** Why the body as read (the map's joints, its `up` axis) cannot be a person standing upright with a
+ *  human build; empty when it can. Twin of retarget.py body_problems (its docstring has the rule): head
+ *  above the root and ankles below it (medians over frames, in leg lengths), left and right bones alike,
+ *  legs longer than the arms' segments; a wrong up axis is named with the `up` that stands the body up. */
+export function bodyProblems(src: SourcePoints, map: JointMap, projectJoints: readonly string[], where: string): string[] {
+  const sources = resolveJoints(map, src.names, projectJoints, where);
+  const n = src.names.length;
+  const F = src.frames;
+  // q(joint, yUp): [F][3] of the joint's source point, in the file's axes or turned y-up
+  const track = (joint: string, yUp: boolean): number[][] => {
+    const idx = sources[projectJoints.indexOf(joint)]!;
+    const out: number[][] = [];
+    for (let f = 0; f < F; f++) {
+      const p = [0, 1, 2].map((c) => idx.reduce((t, i) => t + src.points[(f * n + i) * 3 + c], 0) / idx.length);
+      out.push(yUp && map.up === 'z' ? [p[0], p[2], -p[1]] : p);
+    }
+    return out;
+  };
+  const has = (joint: string) => sources[projectJoints.indexOf(joint)] !== null;
+  const cache = new Map<string, number[][]>();
+  const q = (joint: string) => {
+    if (!cache.has(joint)) cache.set(joint, track(joint, true));
+    return cache.get(joint)!;
+  };
+  const length = (a: string, b: string) => median(q(a).map((p, f) => Math.hypot(p[0] - q(b)[f][0], p[1] - q(b)[f][1], p[2] - q(b)[f][2])));
+  const leg = LEGS.reduce((t, [a, b, c]) => t + length(a, b) + length(b, c), 0) / LEGS.length;
+  const out: string[] = [];
+  const top = has('head') ? 'head' : 'neck';
+  const above = median(q(top).map((p, f) => p[1] - q('root')[f][1]));
+  const below = median(q('root').map((p, f) => p[1] - (q('left_ankle')[f][1] + q('right_ankle')[f][1]) / 2));
+  if (!(above > PLAUSIBLE_HEAD * leg)) out.push(`the ${top} is ${g3(above)} above the root, less than ${PLAUSIBLE_HEAD} leg lengths (${g3(leg)})`);
+  if (!(below > PLAUSIBLE_FEET * leg)) out.push(`the ankles are ${g3(below)} below the root, less than ${PLAUSIBLE_FEET} leg lengths (${g3(leg)})`);
+  if (out.length) {
+    // the file's own axes: along which does the body run from the feet to the head?
+    const [t, la, ra] = [track(top, false), track('left_ankle', false), track('right_ankle', false)];
+    const body = [0, 1, 2].map((c) => median(t.map((p, f) => p[c] - (la[f][c] + ra[f][c]) / 2)));
+    let a = 0;
+    for (let c = 1; c < 3; c++) if (Math.abs(body[c]) > Math.abs(body[a])) a = c;
+    const along = `${body[a] > 0 ? '+' : '-'}${'xyz'[a]}`;
+    const fix = along === '+y' ? 'y' : along === '+z' ? 'z' : null;
+    if (fix && fix !== map.up) {
+      out.push(`the body stands along ${along} of the file, so the file looks ${fix}-up: it was read with "up": "${map.up}" and lies flat; set "up": "${fix}" in the joint map`);
+    } else {
+      out.push(`the body runs along ${along} of the file from the feet to the head (upside down or lying down, read with "up": "${map.up}"); `
+        + 'if the file stands upright, check its up axis and the map\'s left and right joints');
+    }
+  }
+  for (const [a, b] of [['hip', 'knee'], ['knee', 'ankle'], ['shoulder', 'elbow'], ['elbow', 'wrist']]) {
+    const r = length(`right_${a}`, `right_${b}`);
+    const l = length(`left_${a}`, `left_${b}`);
+    if (Math.abs(r - l) > PLAUSIBLE_SYMMETRY * (r + l) / 2) {
+      out.push(`the right ${a}-${b} bone (${g3(r)}) and the left one (${g3(l)}) differ by more than ${Math.round(PLAUSIBLE_SYMMETRY * 100)}%`);
+    }
+  }
+  const arm = Math.max(...['left', 'right'].flatMap((s) => [['shoulder', 'elbow'], ['elbow', 'wrist']].map(([a, b]) => length(`${s}_${a}`, `${s}_${b}`))));
+  if (!(leg > PLAUSIBLE_LEG * arm)) out.push(`the legs (${g3(leg)}) are not longer than ${PLAUSIBLE_LEG} x the longest arm segment (${g3(arm)})`);
+  return out;
+}
+
+/** One sentence for a file whose joints fail bodyProblems (null when they pass): what is wrong and the
+ *  fix. importBvh and importAsfAmc put it in origin.warnings. Twin of retarget.py plausibility_warning. */
+export function plausibilityWarning(src: SourcePoints, map: JointMap, projectJoints: readonly string[], where: string): string | null {
+  const problems = bodyProblems(src, map, projectJoints, where);
+  if (!problems.length) return null;
+  return `${where}: does not look like a person standing upright with the joint map ${map.name}: ${problems.join('; ')}. `
+    + `If that is not the motion, fix the joint map (${GUIDE_MAPS})`;
 }
