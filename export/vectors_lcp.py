@@ -1,14 +1,16 @@
-"""The `lcp` family of shared test vectors: latent sampling (all three Table 4 rows) and diversity.
+"""The `lcp` family of shared test vectors: latent sampling (all three Table 4 rows), the per-sample
+streams it draws from, and diversity.
 
 These pin the predictor's own arithmetic independently of any ONNX file: TypeScript must
-reproduce z and c from (condition outputs, K, sigma scale, seed) and the diversity of given
-futures, within the file's derived tolerance.
+reproduce z and c from (condition outputs, K, sigma scale, seed; one stream per sample, as the
+predictor draws), the streams' first draws exactly, and the diversity of given futures, within the
+file's derived tolerance.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .rng import Prng
+from .rng import streams
 
 # (prior, decoder condition) of Table 4 rows 4, 2 and 3.
 ROWS = [("conditional", None), ("standard_normal", {"name": "h_t", "size": 6}),
@@ -27,7 +29,7 @@ def lcp_vector() -> dict:
             cond = {"mu_c": rng.normal(size=(rows, d)).astype(np.float32),
                     "sigma_c": rng.uniform(0.05, 1.5, size=(rows, d)).astype(np.float32),
                     "h_t": rng.uniform(-1, 1, size=(rows, 6)).astype(np.float32)}
-            z, c = sample_latents(Prng(seed), cond, k, scale, params)
+            z, c = sample_latents(streams(seed, k), cond, k, scale, params)
             sampling.append({"params": params, "seed": seed, "k": k, "sigma_scale": scale,
                              "condition": {n: v.tolist() for n, v in cond.items()},
                              "z": z.astype(np.float64).tolist(), "c": None if c is None else c.astype(np.float64).tolist()})
@@ -35,9 +37,13 @@ def lcp_vector() -> dict:
     for k, frames in [(1, 3), (2, 4), (5, 7)]:
         futures = rng.normal(scale=0.3, size=(k, frames, 18, 3)).astype(np.float32)
         div.append({"futures": futures.astype(np.float64).tolist(), "diversity": diversity(futures)})
-    return {"about": "LCP-VAE predictor arithmetic: condition outputs + K + sigma scale + seed -> z and c "
-                     "(draw order in contract/README.md), and futures -> diversity (WAT Eq. 10)",
-            "sampling": sampling, "diversity": div}
+    # Sample i's stream is Prng(seed) jumped i x 2^64 draws (export/rng.py): its first draws, exactly.
+    first = [{"seed": seed, "count": count, "u32": [[g.next_u32() for _ in range(4)] for g in streams(seed, count)]}
+             for seed, count in [(0, 3), (42, 50), (4294967295, 5)]]
+    return {"about": "LCP-VAE predictor arithmetic: condition outputs + K + sigma scale + seed -> z and c, "
+                     "sample i drawing from streams(seed, K)[i] (draw order in export/sample/lcp_vae.py); "
+                     "seed + count -> each stream's first 4 u32 draws (exact); futures -> diversity (WAT Eq. 10)",
+            "sampling": sampling, "streams": first, "diversity": div}
 
 
 # (clip, start, K, seed, horizon frames or None for the control's default, controls)

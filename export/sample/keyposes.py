@@ -2,10 +2,11 @@
 feed them to the KP-GRU step graph, sample K label and duration sequences with the shared PRNG,
 interpolate the centres from the present pose (Eq. 3) and optionally refine.
 
-Draw order (both languages): after the observed keyposes, step by step; within a step, sample by
-sample (ascending, only samples whose horizon is not yet covered); per sample one uniform for the
+Draw order (both languages): sample i draws from its own stream, streams(seed, K)[i] (export/rng.py):
+after the observed keyposes, at each step whose horizon it has not yet covered, one uniform for the
 label, then one for the duration class. Each draw is the first index whose cumulative
-softmax(logits / temperature) probability exceeds the uniform.
+softmax(logits / temperature) probability exceeds the uniform. A sample's logits come from its own row
+of the batched step graph (rows.run_rows), so the first k samples of K > k are those of K = k.
 """
 from __future__ import annotations
 
@@ -23,9 +24,10 @@ from ..ops.seam import continue_history
 from ..ops.keypose_interpolation import interpolate, keypose_times
 from ..ops.proximity import face_forward, proximity, sample_index, softmax
 from ..paths import MODELS_DIR
-from ..rng import Prng
+from ..rng import streams
 from .predictor import Predictor
 from .request import PredictError, Prediction, Request, horizon_frames
+from .rows import run_rows
 
 
 def read_centres(path: Path, clusters: int, joints: int) -> tuple[np.ndarray, np.ndarray]:
@@ -125,7 +127,7 @@ class KeyposesPredictor(Predictor):
         # A fed-back label's distribution: its centre's proximity to every centre (3.2.1, case 2).
         centre_dist = softmax(proximity(centres, centres), p["label_temperature"]).astype(np.float32)
         eye = np.eye(len(lengths), dtype=np.float32)
-        rng = Prng(req.seed)
+        draws = streams(req.seed, k)
         labels: list[list[int]] = [[] for _ in range(k)]
         classes: list[list[int]] = [[] for _ in range(k)]
         covered = np.zeros(k, np.int64)
@@ -134,16 +136,16 @@ class KeyposesPredictor(Predictor):
             for s in range(k):
                 if covered[s] >= need:
                     continue
-                lab, m1 = sample_index(logits[s], temperature, rng.uniform())
-                dur, m2 = sample_index(dlogits[s], temperature, rng.uniform())
+                lab, m1 = sample_index(logits[s], temperature, draws[s].uniform())
+                dur, m2 = sample_index(dlogits[s], temperature, draws[s].uniform())
                 labels[s].append(lab)
                 classes[s].append(dur)
                 covered[s] += lengths[dur]
                 margins += [m for m in (m1, m2) if np.isfinite(m)]
             if covered.min() >= need:
                 break
-            out = self.runner.run("step", {"label_dist": centre_dist[[ls[-1] for ls in labels]],
-                                           "duration": eye[[cs[-1] for cs in classes]], "hidden": h})
+            out = run_rows(self.runner, "step", {"label_dist": centre_dist[[ls[-1] for ls in labels]],
+                                                 "duration": eye[[cs[-1] for cs in classes]], "hidden": h})
             logits, dlogits, h = out["label_logits"], out["duration_logits"], out["next_hidden"]
 
         canon, placement = canonicalise(history[-p["history_frames"]:], p["history_frames"] - 1, SKELETON)
@@ -152,7 +154,7 @@ class KeyposesPredictor(Predictor):
                             for s in range(k)])
         if refine:
             seq = np.concatenate([np.repeat(present[None, None], k, 0), futures[:, :r]], 1).astype(np.float32)
-            futures = self.runner.run("refine", {"sequence": seq})["refined"].astype(np.float64)
+            futures = run_rows(self.runner, "refine", {"sequence": seq})["refined"].astype(np.float64)
         futures = futures[:, :horizon]
         # The root channel, per segment (export/ops/keypose_travel.py), in the root joint's x and z; then
         # the seam with the history (ops/seam.py) and the skeleton's bone lengths (ops/bones.py), as the

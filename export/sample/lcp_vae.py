@@ -6,36 +6,41 @@ each sample's own last history_frames frames, re-canonicalised):
       Algorithm 2 line 8); s = 0 decodes the most likely future z = mu_c (appendix E);
   row 2 (prior "standard_normal", c = h_t): z = s*eps, c = h_t;
   row 3 (prior "standard_normal", c = z_c): c = mu_c + s*sigma_c*eps_c, z = s*eps.
-Draw order, per graph call, from one Prng(seed): for row 3 first eps_c [K, d_c], then eps [K, d];
-otherwise eps [K, d]; each array row-major (sample, then latent dimension), two uniforms per normal.
+Draw order: sample i draws from its own stream, streams(seed, K)[i] (export/rng.py); per graph call,
+for row 3 first d_c normals (eps_c) then d (eps), otherwise d (eps); two uniforms per normal. Nothing
+couples the samples (the decoder and the recursive condition calls run through rows.run_rows), so the
+first k samples of K > k are those of K = k. sample_latents also takes one Prng, whose arrays fill
+row-major (sample, then latent dimension): the explainer's figures draw so.
 Sampling arithmetic is float64 (mu + (s*sigma)*eps, in that order) rounded to float32 for the graph.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ..rng import Prng
+from ..rng import Prng, row_normals, streams
 from .canonical import from_canonical, to_canonical
 from .predictor import Predictor
 from .request import Prediction, PredictError, Request, horizon_frames
+from .rows import run_rows
 
 
-def sample_latents(prng: Prng, cond: dict[str, np.ndarray], k: int, scale: float,
+def sample_latents(prng: Prng | list[Prng], cond: dict[str, np.ndarray], k: int, scale: float,
                    params: dict) -> tuple[np.ndarray, np.ndarray | None]:
-    """Condition-graph outputs (batch 1 or K) -> (z [K, d], c [K, .] or None), float32."""
+    """Condition-graph outputs (batch 1 or K) -> (z [K, d], c [K, .] or None), float32; draws from one
+    Prng row-major or from K streams, one per sample (twin of sampleLatents in web/src/predictor/lcp-vae.ts)."""
     d = params["latent_size"]
     c_spec = params.get("decoder_condition")
     c = None
     if params["prior"] == "conditional":
-        eps = prng.normals((k, d))
+        eps = row_normals(prng, k, d)
         z = _shift_scale(cond["mu_c"], cond["sigma_c"], scale, eps, k)
     elif params["prior"] == "standard_normal":
         if c_spec and c_spec["name"] == "z_c":
-            eps_c = prng.normals((k, c_spec["size"]))
+            eps_c = row_normals(prng, k, c_spec["size"])
             c = _shift_scale(cond["mu_c"], cond["sigma_c"], scale, eps_c, k)
         elif c_spec and c_spec["name"] == "h_t":
             c = np.broadcast_to(cond["h_t"].astype(np.float32), (k, c_spec["size"])).copy()
-        eps = prng.normals((k, d))
+        eps = row_normals(prng, k, d)
         z = (scale * eps).astype(np.float32)
     else:
         raise PredictError(f"unknown LCP-VAE prior {params['prior']!r} in the manifest")
@@ -71,7 +76,7 @@ class LcpVaePredictor(Predictor):
         n, step = self.params["history_frames"], self.params["future_frames"]
         horizon = horizon_frames(req, self.entry, self.manifest["fps"])
         k, scale = req.k, self.sigma_scale(req)
-        prng = Prng(req.seed)
+        draws = streams(req.seed, k)
         c_spec = self.params.get("decoder_condition")
         # Every sample starts from the same history: the first condition call runs once (batch 1).
         recent = history[-n:].astype(np.float32)[None]         # [1 or K, n, J, 3]
@@ -80,13 +85,14 @@ class LcpVaePredictor(Predictor):
         while done < horizon:
             canon, placements = zip(*(to_canonical(h) for h in recent))
             canon = np.stack(canon)
-            cond = self.runner.run("condition", {"history": canon})
-            z, c = sample_latents(prng, cond, k, scale, self.params)
+            # the first call is batch 1 at every K; the recursive ones are batch K
+            cond = run_rows(self.runner, "condition", {"history": canon})
+            z, c = sample_latents(draws, cond, k, scale, self.params)
             last_poses = np.broadcast_to(canon[:, -2:], (k, 2) + canon.shape[2:]).copy()   # the seam needs two
             feeds = {"z": z, "last_poses": last_poses}
             if c_spec:
                 feeds["c"] = c
-            future = self.runner.run("decoder", feeds)["future"]
+            future = run_rows(self.runner, "decoder", feeds)["future"]
             placements = placements * k if len(placements) == 1 else placements
             future = np.stack([from_canonical(f, a) for f, a in zip(future, placements)])
             pieces.append(future)

@@ -7,8 +7,10 @@ Twin of web/src/predictor/wat.ts. For every action of the sequence, with all K s
      (T_max and stopped = false if no window falls below delta);
   4. Eq. 4 over the last L history frames and the first L predicted ones: the transition's smoothness,
      flagged above the manifest's threshold.
-Draw order: one Prng(seed); per action, eps [K, D] row-major (sample, then latent dimension),
-two uniforms per normal. Nothing else draws.
+Draw order: sample i draws from its own stream, streams(seed, K)[i] (export/rng.py); per action, D
+normals, two uniforms each. Nothing else draws, and nothing couples the samples (each stop, each
+smoothness is the sample's own; graphs run through rows.run_rows), so the first k samples of K > k
+are those of K = k.
 """
 from __future__ import annotations
 
@@ -17,10 +19,11 @@ import numpy as np
 from ..ops.dct_smoothness import smoothness
 from ..ops.facing import root_relative
 from ..ops.variance_stop import first_stop, variance_curve
-from ..rng import Prng
+from ..rng import row_normals, streams
 from .canonical import from_canonical, to_canonical
 from .predictor import Predictor
 from .request import Prediction, PredictError, Request
+from .rows import run_rows
 
 
 def sample_latent(mu: np.ndarray, logvar: np.ndarray, eps: np.ndarray) -> np.ndarray:
@@ -41,7 +44,7 @@ class WatPredictor(Predictor):
         if len(req.actions) > spec["max_length"]:
             raise PredictError(f"the action sequence has {len(req.actions)} actions; at most {spec['max_length']} are allowed")
         k = req.k
-        prng = Prng(req.seed)
+        draws = streams(req.seed, k)
         seqs = [history[-n:].astype(np.float32)] * k          # world frame, grows by each segment
         parts = [[] for _ in range(k)]
         series = [[] for _ in range(k)]
@@ -52,9 +55,9 @@ class WatPredictor(Predictor):
             canon = np.stack(canon)
             onehot = np.zeros((k, len(order)), np.float32)
             onehot[:, order.index(action)] = 1
-            prior = self.runner.run("prior", {"history": canon, "action": onehot})
-            z = sample_latent(prior["prior_mean"], prior["prior_logvar"], prng.normals((k, d)))
-            future = self.runner.run("decoder", {"z": z, "history": canon, "action": onehot})["future"]
+            prior = run_rows(self.runner, "prior", {"history": canon, "action": onehot})
+            z = sample_latent(prior["prior_mean"], prior["prior_logvar"], row_normals(draws, k, d))
+            future = run_rows(self.runner, "decoder", {"z": z, "history": canon, "action": onehot})["future"]
             for i in range(k):
                 # Eq. 8 and Eq. 4 act on root-relative poses: a walk that keeps walking is not static.
                 curve = variance_curve(root_relative(future[i]), q)

@@ -11,7 +11,7 @@ from export.methods.lcp_vae import components
 from export.onnx.export import check_parity
 from export.paths import CONFIGS_DIR, MODELS_DIR
 from export.pipeline import export, train
-from export.rng import Prng
+from export.rng import Prng, streams
 from export.sample.lcp_vae import diversity, sample_latents
 from export.sample.predictor import load_predictor
 from export.sample.request import PredictError, Request
@@ -137,6 +137,13 @@ def test_sampling_follows_the_documented_draw_order():
     eps_c, eps = r.normals((k, 3)), r.normals((k, 2))
     np.testing.assert_array_equal(c, (mu_c.astype(np.float64) + s * sigma_c.astype(np.float64) * eps_c).astype(np.float32))
     np.testing.assert_array_equal(z, (s * eps).astype(np.float32))
+    # the predictor's way: one stream per sample, each drawing eps_c then eps
+    z, c = sample_latents(streams(9, k), {"mu_c": mu_c, "sigma_c": sigma_c}, k, s,
+                          {"latent_size": 2, "prior": "standard_normal", "decoder_condition": {"name": "z_c", "size": 3}})
+    for i, g in enumerate(streams(9, k)):
+        eps_c, eps = g.normals((3,)), g.normals((2,))
+        np.testing.assert_array_equal(c[i], (mu_c[0].astype(np.float64) + s * sigma_c[0].astype(np.float64) * eps_c).astype(np.float32))
+        np.testing.assert_array_equal(z[i], (s * eps).astype(np.float32))
 
 
 def test_diversity_is_eq10_of_wat():

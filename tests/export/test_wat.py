@@ -21,7 +21,7 @@ from export.pipeline import export, train
 from export.sample.predictor import load_predictor
 from export.sample.request import PredictError, Request
 from export.sample.wat import sample_latent
-from export.rng import Prng
+from export.rng import row_normals, streams
 
 
 @pytest.fixture(scope="module")
@@ -312,15 +312,15 @@ def test_stops_follow_eq8_on_the_decoder_output_and_recursion_uses_the_last_n_fr
     p = entry["params"]
     history = _history(clips)
     pred = load_predictor(entry["id"], out).predict(history, Request(k=2, seed=5, actions=["punch", "walk"]))
-    # Redo both steps by hand for sample 1 with the same draws.
-    runner, prng = GraphRunner(entry, out), Prng(5)
+    # Redo both steps by hand for sample 1 with the same draws (one stream per sample, export/rng.py).
+    runner, draws = GraphRunner(entry, out), streams(5, 2)
     onehot = lambda a: np.eye(len(p["actions"]), dtype=np.float32)[[p["actions"].index(a)] * 2]
     recent = np.stack([history.astype(np.float32)] * 2)
     start = 0
     for step, action in enumerate(["punch", "walk"]):
         canon = np.stack([to_canonical(h)[0] for h in recent])
         prior = runner.run("prior", {"history": canon, "action": onehot(action)})
-        z = sample_latent(prior["prior_mean"], prior["prior_logvar"], prng.normals((2, p["latent_size"])))
+        z = sample_latent(prior["prior_mean"], prior["prior_logvar"], row_normals(draws, 2, p["latent_size"]))
         future = runner.run("decoder", {"z": z, "history": canon, "action": onehot(action)})["future"][1]
         # Eq. 8 and Eq. 4 on root-relative poses (export/ops/facing.py)
         stop = first_stop(variance_curve(root_relative(future), p["stop"]["q"]), p["stop"]["delta"],

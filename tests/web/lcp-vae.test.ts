@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import type { ModelEntry } from '../../web/src/contract/types';
 import { LcpVaePredictor, sampleLatents, type LcpParams } from '../../web/src/predictor/lcp-vae';
 import { PredictError, type GraphRunner, type Tensor } from '../../web/src/predictor/types';
-import { Prng } from '../../web/src/rng/prng';
+import { streams } from '../../web/src/rng/prng';
 import { diversity } from '../../web/src/sampling/diversity';
 import { loadManifest, nodePredictor } from './helpers/models';
 import { readVector, tolerance } from './helpers/vectors';
@@ -38,7 +38,7 @@ function maxDiff(a: ArrayLike<number>, b: number[]): number {
 describe('lcp vectors (Python -> TypeScript, within the file\'s tolerance)', () => {
   it.each(vector.sampling.map((c, i) => [i, c] as const))('sampling case %i', (_, c) => {
     const cond = Object.fromEntries(Object.entries(c.condition).map(([k, v]) => [k, tensor(v)]));
-    const { z, c: got } = sampleLatents(new Prng(c.seed), cond, c.k, c.sigma_scale, c.params);
+    const { z, c: got } = sampleLatents(streams(c.seed, c.k), cond, c.k, c.sigma_scale, c.params);
     expect(maxDiff(z, c.z.flat())).toBeLessThanOrEqual(tol);
     if (c.c === null) expect(got).toBeNull();
     else expect(maxDiff(got!, c.c.flat())).toBeLessThanOrEqual(tol);
@@ -160,14 +160,15 @@ describe('Table 4 baselines through the same predictor', () => {
     expect(pred.lengths).toEqual(Int32Array.from([8, 8, 8]));
   });
 
-  it('row 3 feeds c = mu_c + s*sigma_c*eps_c, drawn before z', async () => {
+  it('row 3 feeds c = mu_c + s*sigma_c*eps_c, each sample drawing eps_c before z from its own stream', async () => {
     const mu_c = [0.5, -0.5], sigma_c = [0.2, 0.4];
     const { calls, runner } = recorder({ mu_c, sigma_c });
     const p = new LcpVaePredictor({ entry: entryFor({ name: 'z_c', size: 2 }), skeleton: manifest.skeleton, actions: [], fps: 30, runner, loadFile: noFiles });
     await p.predict(history, { k: 2, seed: 9, controls: { sigma_scale: 1.5 } });
-    const r = new Prng(9);
-    const epsC = r.normals(4);
-    const eps = r.normals(2 * d);
+    const [r0, r1] = streams(9, 2);
+    const [c0, z0, c1, z1] = [r0.normals(2), r0.normals(d), r1.normals(2), r1.normals(d)];
+    const epsC = Float64Array.from([...c0, ...c1]);
+    const eps = Float64Array.from([...z0, ...z1]);
     const wantC = Float32Array.from([0, 1, 2, 3], (i) => Math.fround(mu_c[i % 2]) + 1.5 * Math.fround(sigma_c[i % 2]) * epsC[i]);
     expect(Array.from(calls[1].feeds.c.data)).toEqual(Array.from(wantC));
     expect(Array.from(calls[1].feeds.z.data)).toEqual(Array.from(Float32Array.from(eps, (e) => 1.5 * e)));

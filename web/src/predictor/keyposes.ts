@@ -2,10 +2,11 @@
 // to the KP-GRU step graph, sample K label and duration sequences with the shared PRNG, interpolate
 // the centres from the present pose (Eq. 3) and optionally refine.
 //
-// Draw order (both languages): after the observed keyposes, step by step; within a step, sample by
-// sample (ascending, only samples whose horizon is not yet covered); per sample one uniform for the
-// label, then one for the duration class.
-import { Prng } from '../rng/prng';
+// Draw order (both languages): sample i draws from its own stream, streams(seed, K)[i] (rng/prng.ts):
+// after the observed keyposes, at each step whose horizon it has not yet covered, one uniform for the
+// label, then one for the duration class. A sample's logits come from its own row of the batched step
+// graph, so the first k samples of K > k are those of K = k.
+import { streams } from '../rng/prng';
 import { rotateAboutY } from '../motion/facing';
 import { interpolateKeyposes, keyposeTimes } from '../sampling/keypose-interpolation';
 import { durationClass, extractKeyposes, faceForward, labelDistribution, nearestCentre, pace, prune, travel } from '../sampling/keyposes';
@@ -154,7 +155,7 @@ export class KeyposesPredictor implements Predictor {
 
     // A fed-back label's distribution: its centre's proximity to every centre (3.2.1, case 2).
     const centreDist = Float32Array.from(labelDistribution(centres, kk, centres, kk, j, p.label_temperature));
-    const rng = new Prng(req.seed);
+    const draws = streams(req.seed, k);
     const labels: number[][] = Array.from({ length: k }, () => []);
     const classes: number[][] = Array.from({ length: k }, () => []);
     const covered = new Array<number>(k).fill(0);
@@ -162,8 +163,8 @@ export class KeyposesPredictor implements Predictor {
     for (;;) {
       for (let q = 0; q < k; q++) {
         if (covered[q] >= need) continue;
-        const lab = sampleIndex(logits.subarray(q * kk, (q + 1) * kk), temperature, rng.uniform());
-        const dur = sampleIndex(dlogits.subarray(q * nd, (q + 1) * nd), temperature, rng.uniform());
+        const lab = sampleIndex(logits.subarray(q * kk, (q + 1) * kk), temperature, draws[q].uniform());
+        const dur = sampleIndex(dlogits.subarray(q * nd, (q + 1) * nd), temperature, draws[q].uniform());
         labels[q].push(lab.index);
         classes[q].push(dur.index);
         covered[q] += lengths[dur.index];

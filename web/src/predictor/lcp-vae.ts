@@ -5,12 +5,14 @@
 //     s = 0 decodes the most likely future z = mu_c (appendix E);
 //   row 2 ('standard_normal', c = h_t): z = s*eps, c = h_t;
 //   row 3 ('standard_normal', c = z_c): c = mu_c + s*sigma_c*eps_c, z = s*eps.
-// Draw order, per graph call, from one Prng(seed): for row 3 first eps_c [K, d_c], then eps [K, d];
-// otherwise eps [K, d]; row-major (sample, then latent dimension), two uniforms per normal.
-// The Gaussian sampling is written here with the shared PRNG (web/src/sampling/gaussian.ts did
-// not exist yet); arithmetic in float64 as mu + (s*sigma)*eps, rounded to float32 for the graph.
-import { Prng } from '../rng/prng';
+// Draw order: sample i draws from its own stream, streams(seed, K)[i] (rng/prng.ts); per graph call,
+// for row 3 first d_c normals (eps_c) then d (eps), otherwise d (eps); two uniforms per normal. Nothing
+// couples the samples, so the first k samples of K > k are those of K = k. sampleLatents also takes
+// one Prng, whose arrays fill row-major (sample, then latent dimension): the explainer's figures draw so.
+// The Gaussian is sampling/gaussian.ts's shiftScale: float64 as mu + (s*sigma)*eps, rounded to float32.
+import { rowNormals, streams, type Prng } from '../rng/prng';
 import { diversity } from '../sampling/diversity';
+import { shiftScale } from '../sampling/gaussian';
 import { fromCanonical, toCanonical, type Placement } from './canonical';
 import { checkHistory, checkRequest, horizonFrames } from './request';
 import {
@@ -26,36 +28,27 @@ export interface LcpParams {
   decoder_condition: { name: 'h_t' | 'z_c'; size: number } | null;
 }
 
-/** Condition-graph outputs (batch 1 or k) -> z [k, d] and c [k, .] (or null), float32. */
+/** Condition-graph outputs (batch 1 or k) -> z [k, d] and c [k, .] (or null), float32; draws from one Prng
+ *  row-major or from k streams, one per sample (twin of sample_latents in export/sample/lcp_vae.py). */
 export function sampleLatents(
-  prng: Prng, cond: Record<string, Tensor>, k: number, scale: number, params: LcpParams,
+  prng: Prng | Prng[], cond: Record<string, Tensor>, k: number, scale: number, params: LcpParams,
 ): { z: Float32Array; c: Float32Array | null } {
   const d = params.latent_size;
   const cSpec = params.decoder_condition;
   if (params.prior === 'conditional') {
-    return { z: shiftScale(cond.mu_c.data, cond.sigma_c.data, scale, prng.normals(k * d), k, d), c: null };
+    return { z: shiftScale(cond.mu_c.data, cond.sigma_c.data, rowNormals(prng, k, d), k, d, scale), c: null };
   }
   if (params.prior !== 'standard_normal') throw new PredictError(`unknown LCP-VAE prior '${String(params.prior)}' in the manifest`);
   let c: Float32Array | null = null;
   if (cSpec?.name === 'z_c') {
-    c = shiftScale(cond.mu_c.data, cond.sigma_c.data, scale, prng.normals(k * cSpec.size), k, cSpec.size);
+    c = shiftScale(cond.mu_c.data, cond.sigma_c.data, rowNormals(prng, k, cSpec.size), k, cSpec.size, scale);
   } else if (cSpec?.name === 'h_t') {
     c = broadcast(cond.h_t.data, k, cSpec.size);
   }
-  const eps = prng.normals(k * d);
+  const eps = rowNormals(prng, k, d);
   const z = new Float32Array(k * d);
   for (let i = 0; i < z.length; i++) z[i] = scale * eps[i];
   return { z, c };
-}
-
-function shiftScale(mu: Float32Array, sigma: Float32Array, scale: number, eps: Float64Array, k: number, d: number): Float32Array {
-  const rows = mu.length / d; // 1 (shared history) or k
-  const out = new Float32Array(k * d);
-  for (let i = 0; i < k; i++) {
-    const r = rows === 1 ? 0 : i;
-    for (let j = 0; j < d; j++) out[i * d + j] = mu[r * d + j] + scale * sigma[r * d + j] * eps[i * d + j];
-  }
-  return out;
 }
 
 function broadcast(x: Float32Array, k: number, size: number): Float32Array {
@@ -84,7 +77,7 @@ export class LcpVaePredictor implements Predictor {
     const k = req.k;
     const spec = entry.controls.find((c) => c.id === 'sigma_scale');
     const scale = Number(req.controls?.sigma_scale ?? spec?.default ?? 1);
-    const prng = new Prng(req.seed);
+    const draws = streams(req.seed, k);
     const stride = j * 3;
     const histLen = n * stride;
     const futLen = step * stride;
@@ -103,7 +96,7 @@ export class LcpVaePredictor implements Predictor {
         placements.push(placement);
       });
       const cond = await runner.run('condition', { history: { data: canon, dims: [rows, n, j, 3] } });
-      const { z, c } = sampleLatents(prng, cond, k, scale, params);
+      const { z, c } = sampleLatents(draws, cond, k, scale, params);
       const lastPoses = new Float32Array(k * 2 * stride);      // the history's last two poses (the seam needs both)
       for (let i = 0; i < k; i++) {
         const r = rows === 1 ? 0 : i;

@@ -5,9 +5,10 @@
 //   3. decoder graph -> T_max frames; Eq. 8 on the canonical frames gives the sample's stop frame
 //      (T_max and stopped = false if no window falls below delta);
 //   4. Eq. 4 over the last L history frames and the first L predicted ones, flagged above the threshold.
-// Draw order: one Prng(seed); per action, eps [K, D] row-major (sample, then latent dimension),
-// two uniforms per normal. Nothing else draws.
-import { Prng } from '../rng/prng';
+// Draw order: sample i draws from its own stream, streams(seed, K)[i] (rng/prng.ts); per action, D
+// normals, two uniforms each. Nothing else draws, and nothing couples the samples (each stop, each
+// smoothness is the sample's own), so the first k samples of K > k are those of K = k.
+import { streams } from '../rng/prng';
 import { smoothness } from '../sampling/dct-smoothness';
 import { sampleGaussian } from '../sampling/gaussian';
 import { firstStop, varianceCurve } from '../sampling/variance-stop';
@@ -60,7 +61,7 @@ export class WatPredictor implements Predictor {
     const k = req.k;
     const stride = j * 3;
     const histLen = n * stride;
-    const prng = new Prng(req.seed);
+    const draws = streams(req.seed, k);
     const first = history.positions.slice((history.frames - n) * stride);
     const seqs: Float32Array[] = Array.from({ length: k }, () => first);   // world frame, grows per segment
     const parts: Float32Array[][] = Array.from({ length: k }, () => []);
@@ -82,7 +83,7 @@ export class WatPredictor implements Predictor {
       const historyT = { data: canon, dims: [k, n, j, 3] };
       const actionT = { data: onehot, dims: [k, p.actions.length] };
       const prior = await runner.run('prior', { history: historyT, action: actionT });
-      const z = sampleGaussian(prng, prior.prior_mean.data, prior.prior_logvar.data, k, d);
+      const z = sampleGaussian(draws, prior.prior_mean.data, prior.prior_logvar.data, k, d);
       if (isCancelled()) throw new Superseded();
       const out = await runner.run('decoder', { z: { data: z, dims: [k, d] }, history: historyT, action: actionT });
       const futLen = tMax * stride;
