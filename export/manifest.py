@@ -2,14 +2,34 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 from .contract import load_json, validate
 from .data.skeleton import SKELETON
 from .data.sources import FPS
+from .ops.envelope import SHARED
+
+
+def share_speed_envelope(models: list[dict]) -> list[dict]:
+    """One speed envelope for every model (issue 30): the speed quantities and tempo's reference poses of
+    the model with the shortest history, whose training windows include every other model's last frames."""
+    with_env = [m for m in models if "envelope" in m.get("params", {})]
+    if not with_env:
+        return models
+    source = min(with_env, key=lambda m: m["params"]["history_frames"])["params"]["envelope"]
+    shared = {q: source[q] for q in (*SHARED, "tempo_poses") if q in source}
+    out = []
+    for m in models:
+        if m in with_env:
+            env = {q: v for q, v in m["params"]["envelope"].items() if q not in (*SHARED, "tempo_poses")}
+            m = {**m, "params": {**m["params"], "envelope": {**env, **shared}}}
+        out.append(m)
+    return out
 
 
 def manifest_document(models: list[dict], actions: list[str], data_hash: str) -> dict:
+    models = share_speed_envelope(models)
     return {
         "format": "motion-futures/manifest",
         "version": 1,
@@ -24,7 +44,15 @@ def manifest_document(models: list[dict], actions: list[str], data_hash: str) ->
 def write_manifest(doc: dict, path: Path) -> None:
     validate(doc, "manifest", path)
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    Path(path).write_text(json.dumps(doc, indent=1) + "\n")
+    Path(path).write_text(_numbers_on_one_line(json.dumps(doc, indent=1)) + "\n")
+
+
+_NUMBERS = re.compile(r"\[\s*(-?[0-9][0-9.eE+-]*(?:,\s*-?[0-9][0-9.eE+-]*)*)\s*\]")
+
+
+def _numbers_on_one_line(text: str) -> str:
+    """An array of plain numbers on one line: tempo's reference poses would take a line per number."""
+    return _NUMBERS.sub(lambda m: "[" + ",".join(m.group(1).split(",")).replace(" ", "").replace("\n", "") + "]", text)
 
 
 def read_manifest(path: Path) -> dict:

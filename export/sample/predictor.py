@@ -12,9 +12,9 @@ import numpy as np
 
 from ..manifest import entry as find_entry, read_manifest
 from ..paths import MODELS_DIR
-from ..ops.envelope import check
-from .canonical import to_canonical
+from .canonical import SCALE_LIMITS, SCALE_TOLERANCE, body_scale, rescale, scale_anchor
 from .guard import cut_out_of_bounds
+from .history import refusal_with_warnings, warnings_for
 from .request import Prediction, PredictError, Request, check_history, check_request
 from .runner import GraphRunner
 
@@ -27,35 +27,41 @@ class Predictor:
 
     def predict(self, history: np.ndarray, req: Request) -> Prediction:
         """history [frames, J, 3] in the world frame -> K futures in the same frame, each cut at its
-        first out-of-bounds frame (guard.py), with warnings for a history outside the training envelope."""
+        first out-of-bounds frame (guard.py), with warnings for the history (history.py): outside the
+        training envelope, reflected, still, or at another body size. A body at another size is brought
+        to the model's size for predicting and the futures are scaled back (canonical.py)."""
         joints = len(self.manifest["skeleton"]["joints"])
         n = self.params["history_frames"]
         history = check_history(history, n, joints)
         check_request(req, self.entry, self.manifest["actions"], self.manifest["fps"])
-        env = self.params.get("envelope")
-        warnings = check(to_canonical(history[-n:])[0], env, self.manifest["fps"]) if env else []
+        scale = body_scale(history[-n:])
+        lo, hi = SCALE_LIMITS
+        if not lo <= scale <= hi:
+            raise PredictError(f"the body is {scale:.2f} times the model's size (bone lengths); this model predicts "
+                               f"bodies {lo}-{hi} times its size: retarget the history to the skeleton first")
+        scaled = abs(scale - 1) > SCALE_TOLERANCE
+        anchor = scale_anchor(history)
+        work = rescale(history, 1 / scale, anchor) if scaled else history
+        warnings = warnings_for(history[-n:], self.params.get("envelope"), self.manifest["fps"])
         try:
-            pred = self._predict(history, req)
-        except PredictError as e:   # a refusal also names the envelope warnings, which may be its real cause
+            pred = self._predict(work, req)
+        except PredictError as e:   # a refusal leads with the warning that most likely caused it
             raise PredictError(refusal_with_warnings(str(e), warnings)) from None
-        cut_out_of_bounds(pred.futures, pred.lengths, pred.samples, history[-n:])
+        cut_out_of_bounds(pred.futures, pred.lengths, pred.samples, work[-n:])
         if pred.ghosts is not None:      # keypose ghosts past a cut go with it
             for i, s in enumerate(pred.samples):
                 keep = len(s.get("marks", pred.ghosts["frames"][i]))
                 pred.ghosts["frames"][i] = pred.ghosts["frames"][i][:keep]
                 pred.ghosts["poses"][i] = pred.ghosts["poses"][i][:keep]
+        if scaled:                       # back to the history's size
+            pred.futures = rescale(pred.futures, scale, anchor).astype(np.float32)
+            if pred.ghosts is not None:
+                pred.ghosts["poses"] = [rescale(p, scale, anchor).astype(np.float32) for p in pred.ghosts["poses"]]
         pred.warnings = warnings
         return pred
 
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         raise NotImplementedError
-
-
-def refusal_with_warnings(message: str, warnings: list[dict]) -> str:
-    """A refusal followed by the history's envelope warnings (twin of factory.ts refusalWithWarnings)."""
-    if not warnings:
-        return message
-    return f"{message}. The history is outside the training range: " + " ".join(w["message"] for w in warnings)
 
 
 # The one place that knows which predictor runs which method (twin of web/src/predictor/factory.ts).

@@ -4,7 +4,10 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { ClipIndex } from '../../web/src/contract/types';
 import { boneLengths, projectLengths } from '../../web/src/motion/bones';
-import { checkEnvelope, measure } from '../../web/src/predictor/envelope';
+import { handedness, swapLeftRight } from '../../web/src/motion/handedness';
+import { bodyScale, rescale, scaleAnchor } from '../../web/src/predictor/canonical';
+import { checkEnvelope, measure, type Envelope, type TempoPoses } from '../../web/src/predictor/envelope';
+import { warningsFor } from '../../web/src/predictor/history';
 import { firstBadFrame } from '../../web/src/predictor/guard';
 import { readVector, tolerance, worstDiff } from './helpers/vectors';
 
@@ -24,17 +27,41 @@ describe('bone lengths and their projection match Python', () => {
       got.forEach((l, i) => expect(Math.abs(l - c.lengths[i % c.lengths.length])).toBeLessThan(1e-9));
     });
   }
+  const scales = readVector<{ scales: { clip: string; factor: number; motion: P; body_scale: number; anchor: number[]; model_size: P }[] }>('bones').scales;
+  for (const c of scales) {
+    it(`${c.clip} scaled ${c.factor}: its body scale and the body at the model's size`, () => {
+      const m = Float64Array.from(c.motion.flat(2));
+      const scale = bodyScale(m, c.motion.length, skeleton);
+      expect(Math.abs(scale - c.body_scale)).toBeLessThanOrEqual(tolerance(v));
+      const anchor = scaleAnchor(m, c.motion.length, skeleton.joints.length);
+      expect(worstDiff(anchor, c.anchor)).toBeLessThanOrEqual(tolerance(v));
+      expect(worstDiff(rescale(m, 1 / scale, anchor), c.model_size.flat(2))).toBeLessThanOrEqual(Math.max(tolerance(v), 1e-6));
+    });
+  }
 });
 
 describe('the training envelope matches Python', () => {
-  const v = readVector<{ fps: number; envelope: Record<string, [number, number]>;
-    cases: { clip: string; change: string; canonical: P; measure: Record<string, number>; warnings: string[] }[] }>('envelope');
+  const v = readVector<{ fps: number; envelope: Envelope;
+    cases: { clip: string; change: string; world: P; canonical: P; measure: Record<string, number | null>; warnings: string[];
+      handedness: number; swapped_handedness: number; history_warnings: string[] }[] }>('envelope');
   for (const c of v.cases) {
     it(`${c.clip}, ${c.change}: quantities within the tolerance, warnings exactly`, () => {
       const canon = Float64Array.from(c.canonical.flat(2));
-      const got = measure(canon, c.canonical.length, v.fps, skeleton);
-      for (const [q, value] of Object.entries(c.measure)) expect(Math.abs(got[q] - value)).toBeLessThanOrEqual(tolerance(v));
+      const got = measure(canon, c.canonical.length, v.fps, skeleton, v.envelope.tempo_poses as TempoPoses);
+      expect(Object.keys(got)).toEqual(Object.keys(c.measure));
+      for (const [q, value] of Object.entries(c.measure)) {
+        if (value === null) expect(got[q]).toBeNull();
+        else expect(Math.abs((got[q] as number) - value)).toBeLessThanOrEqual(tolerance(v));
+      }
       expect(checkEnvelope(canon, c.canonical.length, v.fps, skeleton, v.envelope).map((w) => w.quantity)).toEqual(c.warnings);
+    });
+    it(`${c.clip}, ${c.change}: handedness and the predictor's history warnings, in order`, () => {
+      const world = Float32Array.from(c.world.flat(2));
+      const frames = c.world.length;
+      expect(Math.abs(handedness(world, frames, skeleton).score - c.handedness)).toBeLessThanOrEqual(tolerance(v));
+      expect(Math.abs(handedness(swapLeftRight(world, frames, skeleton), frames, skeleton).score - c.swapped_handedness))
+        .toBeLessThanOrEqual(tolerance(v));
+      expect(warningsFor(world, frames, v.fps, skeleton, v.envelope).map((w) => w.quantity)).toEqual(c.history_warnings);
     });
   }
   it('a history raised by 0.7 m is named by its root height, with value and range', () => {

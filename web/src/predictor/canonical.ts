@@ -85,3 +85,43 @@ export function toCanonical(history: Float32Array, frames: number, skeleton: Ske
 export function fromCanonical(frames: Float32Array, joints: number, placement: Placement): Float32Array {
   return Float32Array.from(place(Float64Array.from(frames), joints, placement));
 }
+
+// Body scale (issue 30), twin of export/sample/canonical.py (contract/vectors/bones.json ties them): a
+// history at another body size is brought to the model's size before predicting and its futures are
+// scaled back, about the root's ground point at the last history frame, so the floor and the root stay
+// where they are. The checked predictor (history.ts) does it once per prediction.
+export const SCALE_TOLERANCE = 0.03;
+export const SCALE_LIMITS: [number, number] = [0.5, 2.0];
+
+/** World positions [frames, J, 3] -> the body's size against the skeleton: the sum of its mean bone
+ * lengths over the sum of the skeleton's offsets' lengths (1 = the model's size). */
+export function bodyScale(world: ArrayLike<number>, frames: number, skeleton: Skeleton): number {
+  const J = skeleton.joints.length;
+  let mine = 0;
+  let rest = 0;
+  skeleton.parents.forEach((p, c) => {
+    if (p < 0) return;
+    rest += Math.hypot(...(skeleton.offsets?.[c] ?? [0, 0, 0]));
+    let sum = 0;
+    for (let f = 0; f < frames; f++) {
+      const a = (f * J + p) * 3;
+      const b = (f * J + c) * 3;
+      sum += Math.hypot(world[b] - world[a], world[b + 1] - world[a + 1], world[b + 2] - world[a + 2]);
+    }
+    mine += sum / frames;
+  });
+  return mine / rest;
+}
+
+/** The point scaling keeps: the root's ground point at the last frame. */
+export function scaleAnchor(world: ArrayLike<number>, frames: number, joints: number): [number, number, number] {
+  const o = (frames - 1) * joints * 3;
+  return [world[o], 0, world[o + 2]];
+}
+
+/** Flat [..., 3] positions scaled by `factor` about `anchor` (arithmetic in float64, a float32 copy). */
+export function rescale(world: ArrayLike<number>, factor: number, anchor: [number, number, number]): Float32Array {
+  const out = new Float32Array(world.length);
+  for (let i = 0; i < world.length; i++) out[i] = anchor[i % 3] + (world[i] - anchor[i % 3]) * factor;
+  return out;
+}

@@ -4,7 +4,7 @@
 import { captureWasmMemory, wasmMemoryBytes } from '../bench/wasm-memory';
 import type { Manifest } from '../contract/types';
 import { readoutAfter, type StageReadout } from '../ui/readout';
-import { createPredictor } from './factory';
+import { createCheckedPredictor } from './history';
 import { OrtRunner, type GraphTiming, type OrtModule } from './ort-runner';
 import type { ErrorKind, FromWorker, ReadoutInput, ToWorker } from './protocol';
 import { Scheduler, type Job as QueuedJob } from './scheduler';
@@ -71,7 +71,7 @@ async function predictorFor(model: string, id: number): Promise<{ predictor: Pre
     if (!entry) throw new PredictError(`unknown model '${model}'`);
     const runner = new OrtRunner(runtime(), entry, fetchBytes, (t) => timings.push(t));
     await runner.loadAll((loaded, total) => post({ type: 'progress', id, model, loaded, total }));
-    const predictor = createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: fetchBytes });
+    const predictor = createCheckedPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: fetchBytes });
     p = { predictor, runner };
     predictors.set(model, p);
   }

@@ -104,6 +104,20 @@ export function mountStageStatus(container: HTMLElement): (text: string, state: 
   };
 }
 
+/** Findings that are not a range (web/src/predictor/history.ts): their own sentence says what to do. */
+const OWN_SENTENCE = new Set(['handedness', 'motion', 'body_scale']);
+
+/** The notice's one sentence. The warnings come most likely cause first (history.ts ordered), so a
+ *  reflected or frozen history, or a rescaled body, leads with its own sentence, not "out of range". */
+export function rangeHeadline(warnings: RangeWarning[], model: string): string {
+  const [first] = warnings;
+  if (OWN_SENTENCE.has(first.quantity)) {
+    const more = warnings.length > 1 ? ` (${warnings.length - 1} more under Details)` : '';
+    return `${first.message}${more} The futures are shown anyway.`;
+  }
+  return `Out of range: this history lies outside what ${model} was trained on (${warnings.length === 1 ? first.quantity : `${warnings.length} quantities`}); the futures are shown anyway.`;
+}
+
 /** One sentence over the stage when the history lies outside the model's training envelope; the
  *  quantities, values and ranges behind a toggle. */
 export function mountRangeNotice(container: HTMLElement): (warnings: RangeWarning[] | null, model: string) => void {
@@ -115,11 +129,10 @@ export function mountRangeNotice(container: HTMLElement): (warnings: RangeWarnin
     const unit = (w: RangeWarning) => (w.unit ? ` ${w.unit}` : '');
     container.hidden = false;
     container.replaceChildren(el('div', { class: 'range-notice', role: 'status', 'data-testid': 'range-notice' },
-      el('span', { class: 'range-notice-text' },
-        `Out of range: this history lies outside what ${model} was trained on (${warnings.length === 1 ? warnings[0].quantity : `${warnings.length} quantities`}); the futures are shown anyway.`),
+      el('span', { class: 'range-notice-text' }, rangeHeadline(warnings, model)),
       el('details', { class: 'range-details' }, el('summary', {}, 'Details'),
         el('ul', {}, ...warnings.map((w) => el('li', { 'data-quantity': w.quantity },
-          el('strong', {}, w.quantity), `: ${fmt(w.value)}${unit(w)}; training range ${fmt(w.min)}–${fmt(w.max)}${unit(w)}. `,
+          ...(OWN_SENTENCE.has(w.quantity) ? [] : [el('strong', {}, w.quantity), `: ${fmt(w.value)}${unit(w)}; training range ${fmt(w.min)}–${fmt(w.max)}${unit(w)}. `]),
           el('span', { class: 'muted' }, w.message)))))));
   };
 }
