@@ -1,5 +1,8 @@
 // Bring your own motion in a real Chromium: drop a BVH on the page, predict from it, export a GLB;
-// a bad file is named and the stage keeps what it had.
+// a bad file is named and the stage keeps what it had. Then the import panel's sorting of a drop
+// (issue 30): a metadata sidecar is ignored by name, a map applies to its own drop only, a folder stays
+// in the name, two AMC files import nothing and the banner says so, a mirrored body is offered the
+// swap; and the served guide (bring-your-own.html) the messages link to.
 import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
@@ -12,6 +15,25 @@ const fixture = (name: string) => readFileSync(new URL(`../fixtures/${name}`, im
 const status = (page: Page, key: string, value: string) =>
   page.waitForSelector(`body[data-${key}="${value}"]`, { state: 'attached', timeout: 90_000 });
 const settle = (page: Page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+/** Drop a folder: Chromium hands a real one over as file system entries; these fake entries carry the files. */
+async function dropFolder(page: Page, folder: string, files: { name: string; text: string }[]): Promise<void> {
+  await page.evaluate(([dir, fs]) => {
+    const file = (f: { name: string; text: string }) => ({
+      isFile: true, isDirectory: false, name: f.name, fullPath: `/${dir}/${f.name}`,
+      file: (ok: (x: File) => void) => ok(new File([f.text], f.name)),
+    });
+    let given = false;
+    const folderEntry = {
+      isFile: false, isDirectory: true, name: dir, fullPath: `/${dir}`,
+      createReader: () => ({ readEntries: (ok: (x: unknown[]) => void) => { ok(given ? [] : fs.map(file)); given = true; } }),
+    };
+    const dt = { files: [] as File[], items: [{ kind: 'file', webkitGetAsEntry: () => folderEntry }] };
+    const e = new Event('drop', { bubbles: true, cancelable: true });
+    Object.defineProperty(e, 'dataTransfer', { value: dt });
+    document.querySelector('motion-futures')!.dispatchEvent(e);
+  }, [folder, files] as const);
+}
 
 /** Drop files on the widget the way a person does: a drop event carrying a DataTransfer. */
 async function drop(page: Page, files: { name: string; text: string }[]): Promise<void> {
@@ -110,5 +132,107 @@ describe('bring your own motion', () => {
     expect(await page.locator('.import-status').textContent()).toMatch(/: 28\d frames at 30 Hz \(9\.\d s\) from 112\d at 120 Hz, joint map cmu-asf/);
     const source = await page.evaluate(() => window.motionFutures!.onStage().source);
     expect(source).toEqual({ kind: 'dropped', name: take.amc_file });
+  });
+
+  describe('what a drop holds', () => {
+    const walk = fixture('walk.bvh');
+    const METADATA = JSON.stringify({ content: 'walk forward', fps: 100 });
+    const imported = async (files: { name: string; text: string }[]) => {
+      await page.evaluate(() => { document.body.dataset.importStatus = 'waiting'; });
+      await drop(page, files);
+      await page.waitForSelector('body[data-import-status="done"], body[data-import-status="error"]', { state: 'attached', timeout: 90_000 });
+      // the widget's parts sit in its shadow root: locators reach them, document.querySelector does not
+      const ignored = page.locator('.import-ignored');
+      return {
+        state: await page.evaluate(() => document.body.dataset.importStatus), status: await page.locator('.import-status').textContent(),
+        ignored: (await ignored.isHidden()) ? '' : await ignored.textContent(),
+        banner: await page.locator('.message-text').allTextContents(),
+        stage: await page.evaluate(() => window.motionFutures!.onStage().motion?.name),
+      };
+    };
+
+    it('two AMC files import nothing, and the banner never says "Imported"', async () => {
+      const r = await imported([{ name: '05_07.amc', text: '1\nroot 0 0 0 0 0 0\n' }, { name: '05_08.amc', text: '1\n' }]);
+      expect(r.state).toBe('error');
+      expect(r.status).toBe('05_07.amc, 05_08.amc: an AMC motion needs its ASF skeleton: drop the .asf (e.g. 05.asf) together with one .amc');
+      expect(r.banner.filter((t) => /Imported/.test(t))).toEqual([]);
+      expect(r.banner.some((t) => t.startsWith('Could not import: 05_07.amc, 05_08.amc'))).toBe(true);
+    });
+
+    it('a metadata .json beside a BVH is ignored by name, and the next file imports on its own', async () => {
+      const r = await imported([{ name: 'take.bvh', text: walk }, { name: 'take.json', text: METADATA }]);
+      expect([r.state, r.stage]).toEqual(['done', 'take']);
+      expect(r.ignored).toBe("Ignored take.json: not a joint map (it has the fields 'content', 'fps').");
+      expect(r.banner.filter((t) => /Imported/.test(t))).toEqual(['Imported take.bvh.']);
+      const next = await imported([{ name: 'again.bvh', text: walk }]);
+      expect([next.state, next.stage, next.ignored]).toEqual(['done', 'again', '']);
+    });
+
+    it('a joint map applies to its own drop only; the error after it links to the served guide', async () => {
+      // a left wrist no built-in map names
+      const game = walk.replace(/^(\s*JOINT\s+)LeftHand\b/m, '$1HandL');
+      const map = JSON.stringify({ extends: 'cmu-bvh', joints: { left_wrist: ['HandL'] } });
+      const r = await imported([{ name: 'game.bvh', text: game }, { name: 'rig.json', text: map }]);
+      expect(r.state).toBe('done');
+      expect(r.status).toMatch(/joint map cmu-bvh \+ rig\.json\.$/);
+      const after = await imported([{ name: 'game.bvh', text: game }]);
+      expect([after.state, after.stage]).toEqual(['error', 'game']);
+      expect(after.status).toMatch(/game.bvh: unknown skeleton/);
+      // the message names the guide (bring-your-own.html, or the repository file before the readers say so): a link to the page
+      const href = await page.locator('.import-status a.guide-link').first().getAttribute('href');
+      expect(href).toMatch(/\/bring-your-own\.html(#[\w-]+)?$/);
+      expect(new URL(href!).origin).toBe(new URL(baseUrl).origin);
+    });
+
+    it('a z-up file read as y-up imports with the readers\' warning; with its map, without', async () => {
+      const zup = fixture('walk_zup.bvh');
+      const r = await imported([{ name: 'zup.bvh', text: zup }]);
+      expect(r.state).toBe('done');
+      expect(await page.locator('.import-warnings li').allTextContents()).toEqual([expect.stringContaining('set "up": "z"')]);
+      expect(r.banner.some((t) => t.startsWith('zup.bvh: '))).toBe(true);
+      const fixed = await imported([{ name: 'zup.bvh', text: zup }, { name: 'up.json', text: '{"up": "z"}' }]);
+      expect([fixed.state, await page.locator('.import-warnings').isHidden()]).toEqual(['done', true]);
+    });
+
+    it('a dropped folder keeps its name in the clip\'s', async () => {
+      await page.evaluate(() => { document.body.dataset.importStatus = 'waiting'; });
+      await dropFolder(page, 'Walk', [{ name: '07_01.bvh', text: walk }, { name: '07_01.json', text: METADATA }]);
+      await status(page, 'import-status', 'done');
+      const stage = await page.evaluate(() => { const s = window.motionFutures!.onStage(); return { name: s.motion?.name, source: s.source }; });
+      expect(stage).toEqual({ name: 'walk_07_01', source: { kind: 'dropped', name: 'Walk/07_01.bvh' } });
+      expect(await page.locator('.import-ignored').textContent()).toMatch(/^Ignored Walk\/07_01\.json: not a joint map/);
+    });
+
+    it('a mirrored body is offered the swap of left and right, and the swap is what goes on stage', async () => {
+      const mirrored = walk.replace(/Left|Right/g, (x) => (x === 'Left' ? 'Right' : 'Left'));
+      const r = await imported([{ name: 'mirror.bvh', text: mirrored }]);
+      expect(r.state).toBe('done');
+      await status(page, 'import-handedness', 'reflected');
+      expect(await page.locator('.import-swap').textContent()).toMatch(/^mirror: Left and right look swapped/);
+      await session.screenshot('byo-swap-offer.png', page.locator('#import-drop').locator('xpath=..'));
+      await page.locator('#import-swap').click();
+      await status(page, 'import-handedness', 'swapped');
+      expect(await page.locator('.import-swap').isHidden()).toBe(true);
+      expect(await page.locator('.import-status').textContent()).toMatch(/joint map cmu-bvh, left and right swapped\.$/);
+      expect(await page.evaluate(() => window.motionFutures!.onStage().motion?.name)).toBe('mirror');
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    });
+  });
+
+  it('the site serves its bring-your-own guide with an example joint map, offline too', async () => {
+    const guide = await session.context.newPage();
+    await guide.goto(`${baseUrl}bring-your-own.html#an-example-joint-map`);
+    await guide.waitForSelector('body[data-guide-status="done"]', { state: 'attached' });
+    expect(await guide.locator('h1').textContent()).toBe('Bring your own motion, take the predictions away');
+    expect(await guide.locator('#joint-maps').count()).toBe(1);
+    const example = JSON.parse((await guide.locator('[data-testid="example-map"] pre').nth(1).textContent())!);
+    expect(example.name).toBe('my-rig');
+    await session.screenshot('byo-guide.png', guide);
+    const [saved] = await Promise.all([guide.waitForEvent('download'), guide.locator('[data-testid="example-map"] button').nth(1).click()]);
+    expect(saved.suggestedFilename()).toBe('my-rig.json');
+    expect(JSON.parse(readFileSync((await saved.path())!, 'utf8'))).toEqual(example);
+    // the service worker precaches it with the other pages
+    expect(await guide.evaluate(async () => (await (await fetch('./sw.js')).text()).includes('bring-your-own.html'))).toBe(true);
+    await guide.close();
   });
 });

@@ -1,6 +1,7 @@
 // The message banner (one sentence per message, details behind a toggle, over the stage) and the
-// last-resort handler for uncaught errors.
+// last-resort handler for uncaught errors. A message naming the bring-your-own guide links to it.
 import { el } from './dom';
+import { linkified } from './guide-link';
 
 export type MessageLevel = 'error' | 'warning' | 'info';
 
@@ -44,8 +45,8 @@ export class MessageBanner {
     const more = details ?? short.details;
     const dismiss = el('button', { type: 'button', class: 'message-dismiss', 'aria-label': 'Dismiss message' }, '×');
     const item = el('li', { class: `message message-${level}`, role: level === 'info' ? 'status' : 'alert' },
-      el('span', { class: 'message-text' }, short.summary),
-      more ? el('details', { class: 'message-details' }, el('summary', {}, 'Details'), el('p', {}, more)) : null,
+      el('span', { class: 'message-text' }, ...linkified(short.summary)),
+      more ? el('details', { class: 'message-details' }, el('summary', {}, 'Details'), el('p', {}, ...linkified(more))) : null,
       dismiss);
     dismiss.addEventListener('click', () => { item.remove(); if (key) this.byKey.delete(key); });
     if (key) this.byKey.set(key, item);
