@@ -2,8 +2,12 @@ import { defineConfig, type Plugin } from 'vite';
 import { VitePWA } from 'vite-plugin-pwa';
 import { appendFileSync, existsSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
+import { CONTENT_SECURITY_POLICY, cspMeta } from './web/build/csp';
+import { precompiledValidators } from './web/build/precompiled-validators';
 
 const root = fileURLToPath(new URL('./web', import.meta.url));
+/** The one script with a stable name (host pages include it by name); every other script has its hash in its name. */
+const EMBED_SCRIPT = 'assets/motion-futures.js';
 const here = (path: string) => fileURLToPath(new URL(path, import.meta.url));
 
 /** Files every build carries at the top of dist/, so the folder on a USB stick has its licences. */
@@ -76,18 +80,23 @@ export default defineConfig({
         bench: here('./web/bench.html'),
         explainer: here('./web/explainer.html'),
         'model-card': here('./web/model-card.html'),
+        // The bring-your-own guide (docs/BRING_YOUR_OWN.md as a page); the import panel's messages link to it.
+        'bring-your-own': here('./web/bring-your-own.html'),
         'motion-futures': here('./web/src/embed/element.ts'),
       },
       // The service worker's precache hashing (15 MB) is slow by design; no need to warn each build.
       checks: { bundlerTimings: false },
       output: {
         // Every script sits in assets/: web/src/embed/site.ts finds the site root from that.
-        entryFileNames: (chunk) => (chunk.name === 'motion-futures' ? 'assets/motion-futures.js' : 'assets/[name]-[hash].js'),
+        entryFileNames: (chunk) => (chunk.name === 'motion-futures' ? EMBED_SCRIPT : 'assets/[name]-[hash].js'),
         chunkFileNames: 'assets/[name]-[hash].js',
       },
     },
   },
   plugins: [
+    // The content-security policy on every page, and the contract validators it needs compiled.
+    cspMeta(),
+    precompiledValidators(here('./contract')),
     siteFiles(),
     bundledPackages(),
     // Offline: a service worker precaching the whole site, models and the 14 MB wasm included.
@@ -109,18 +118,25 @@ export default defineConfig({
       includeManifestIcons: false, // icon.svg comes from siteFiles() and the glob below
       workbox: {
         globPatterns: ['**/*.{html,js,css,wasm,onnx,json,svg,webmanifest}'],
+        // vite-plugin-pwa takes every file in assets/ as named by its hash, so precached without a
+        // revision and kept from one release to the next. The embed script is not: with no revision a
+        // new release kept the old one, whose imports (the old release's chunks) are gone.
+        dontCacheBustURLsMatching: new RegExp(`^assets/(?!${EMBED_SCRIPT.slice('assets/'.length).replace(/\./g, '\\.')}$)`),
         // Workbox skips files over 2 MiB by default, which would leave out the wasm.
         maximumFileSizeToCacheInBytes: 64 * 1024 * 1024,
         // Permalinks carry the state in the query: every query maps to the same cached page.
         ignoreURLParametersMatching: [/.*/],
         navigateFallback: null,
         cleanupOutdatedCaches: true,
+        // The first visit's worker takes the page at once; a new release's worker waits until a page
+        // asks it to take over and then reloads (web/src/embed/offline.ts), so releases never mix.
         clientsClaim: true,
-        skipWaiting: true,
+        skipWaiting: false,
       },
     }),
   ],
-  worker: { format: 'es', plugins: () => [bundledPackages()] },
+  worker: { format: 'es', plugins: () => [precompiledValidators(here('./contract')), bundledPackages()] },
   server: { host: '127.0.0.1', fs: { allow: [fileURLToPath(new URL('.', import.meta.url))] } },
-  preview: { host: '127.0.0.1' },
+  // The same policy as a header: it also covers the workers and the service worker.
+  preview: { host: '127.0.0.1', headers: { 'Content-Security-Policy': CONTENT_SECURITY_POLICY } },
 });

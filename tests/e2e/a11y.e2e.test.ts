@@ -17,7 +17,7 @@ interface Violation { id: string; impact: string | null; help: string; nodes: { 
 
 /** axe-core's violations of impact serious or critical, in words a failing test can show. */
 async function seriousViolations(page: Page): Promise<string[]> {
-  await page.addScriptTag({ content: AXE });
+  await page.evaluate(AXE);
   const violations = await page.evaluate(async () => {
     const axe = (window as unknown as { axe: { run(ctx: Document, o: object): Promise<{ violations: Violation[] }> } }).axe;
     const r = await axe.run(document, { resultTypes: ['violations'] });

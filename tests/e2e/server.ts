@@ -5,7 +5,8 @@ import { resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 export const ROOT = fileURLToPath(new URL('../..', import.meta.url));
-const VITE = './node_modules/.bin/vite';
+// absolute, so a build can run in another tree (buildTree)
+const VITE = resolve(ROOT, 'node_modules/.bin/vite');
 
 export interface PreviewServer {
   /** Site URL ending in '/', e.g. http://127.0.0.1:41234/ or .../sub/path/ */
@@ -14,9 +15,9 @@ export interface PreviewServer {
   stop(): Promise<void>;
 }
 
-function run(args: string[], timeoutMs: number): Promise<void> {
+function run(args: string[], timeoutMs: number, cwd = ROOT): Promise<void> {
   return new Promise((resolve, reject) => {
-    const child = spawn(VITE, args, { cwd: ROOT, stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, NO_COLOR: '1' } });
+    const child = spawn(VITE, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, NO_COLOR: '1' } });
     let output = '';
     child.stdout!.on('data', (d) => { output += d; });
     child.stderr!.on('data', (d) => { output += d; });
@@ -35,6 +36,11 @@ export function buildSite(timeoutMs = 300_000, outDir?: string): Promise<void> {
   // vite resolves a relative outDir against its root (web/), so pass it absolute
   const out = outDir ? ['--outDir', resolve(ROOT, outDir), '--emptyOutDir'] : [];
   return run(['build', '--logLevel', 'warn', ...out], timeoutMs);
+}
+
+/** `vite build` of another source tree (its own vite.config.ts, package.json, web/ and public/) into outDir. */
+export function buildTree(tree: string, outDir: string, timeoutMs = 300_000): Promise<void> {
+  return run(['build', '--logLevel', 'warn', '--outDir', resolve(ROOT, outDir), '--emptyOutDir'], timeoutMs, tree);
 }
 
 export function freePort(): Promise<number> {

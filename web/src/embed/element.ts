@@ -24,7 +24,7 @@ export class MotionFuturesElement extends HTMLElement {
         link: params,
         onLink: page ? (search) => keepPageUrl(search) : undefined,
       });
-      if (page) registerServiceWorker(this.app.ready, (s) => this.app?.offline(s));
+      if (page) registerServiceWorker(this.app.ready, (s) => this.app?.offline(s), () => this.app?.onStage().source.kind === 'dropped');
     } catch (err) {
       const box = document.createElement('p');
       box.setAttribute('role', 'alert');
