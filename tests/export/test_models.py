@@ -71,8 +71,10 @@ def test_missing_model_file_is_named(tmp_path):
     import shutil
     shutil.copy(MODELS_DIR / "manifest.json", tmp_path / "manifest.json")
     p = load_predictor("regression-gru", tmp_path)
+    index = load_json(CLIPS_DIR / "index.json", "clip-index")
+    history = read_clip(CLIPS_DIR / f"{index['default']['clip']}.json").positions[:10]   # a body the checks accept
     with pytest.raises(FileNotFoundError, match="regression-gru.predict.onnx: model file missing"):
-        p.predict(np.zeros((10, 18, 3)), Request())
+        p.predict(history, Request())
 
 
 def test_model_hash_covers_the_method_import_closure_only():
