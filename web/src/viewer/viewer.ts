@@ -64,6 +64,11 @@ const CELL_GAP = 0.35;
 const MIN_CELL_WIDTH = 1.0;
 /** Rows closer than this hide each other from the raised front view (layout.ts ROW_SPACING). */
 const MIN_CELL_DEPTH = ROW_SPACING;
+/** The largest cells: one sample that walks 4 m while the others stand would otherwise make every
+ *  cell 4 m wide and every figure a few dozen pixels tall; past this a far walker may cross into a
+ *  neighbour's cell (its colour and label still say whose it is). Readable figures over no overlap. */
+const MAX_CELL_WIDTH = 1.8;
+const MAX_CELL_DEPTH = 2.0;
 /** Frames the camera's path is averaged over on each side: it glides instead of jittering with every step. */
 const FOLLOW_SMOOTHING = 12;
 const LABEL_LIFT = 0.3;
@@ -236,7 +241,10 @@ export class Viewer implements SkeletonView {
       });
       if (u1 >= u0) { width = Math.max(width, u1 - u0); depth = Math.max(depth, v1 - v0); }
     }
-    return { width: Math.max(MIN_CELL_WIDTH, width + CELL_GAP), depth: Math.max(MIN_CELL_DEPTH, depth + CELL_GAP) };
+    return {
+      width: Math.min(MAX_CELL_WIDTH, Math.max(MIN_CELL_WIDTH, width + CELL_GAP)),
+      depth: Math.min(MAX_CELL_DEPTH, Math.max(MIN_CELL_DEPTH, depth + CELL_GAP)),
+    };
   }
 
   private arrange(reframe: boolean): void {
@@ -267,17 +275,34 @@ export class Viewer implements SkeletonView {
     const length = Math.max(1, timelineLength(this.tracks));
     const labelRoom = Math.max(0, ...this.labels.map((l) => l.lift)) + 0.12;
     const boxes: Box3[] = [];
+    const corners: Float32Array[] = [];
     const placements = this.arrangement.placements;
     for (let f = 0; f < length; f++) {
       // plain numbers, not a Box3 per figure and frame: K = 50 runs this for 52 figures x 150 frames
       let x0 = Infinity; let y0 = Infinity; let z0 = Infinity; let x1 = -Infinity; let y1 = -Infinity; let z1 = -Infinity;
+      const shown: number[] = [];
       for (let pi = 0; pi < placements.length; pi++) {
         if (!this.visible(pi, f)) continue;
         const p = placements[pi];
         const b = this.frameBoxes[p.track][trackPose(this.tracks[p.track], f).a];
         x0 = Math.min(x0, b.min.x + p.x); y0 = Math.min(y0, b.min.y); z0 = Math.min(z0, b.min.z + p.z);
         x1 = Math.max(x1, b.max.x + p.x); y1 = Math.max(y1, b.max.y); z1 = Math.max(z1, b.max.z + p.z);
+        shown.push(pi);
       }
+      // each figure's own box (floor to label), for a fit as tight as the figures (stage.ts FramePlan)
+      const pts = new Float32Array(shown.length * 24);
+      shown.forEach((pi, n) => {
+        const p = placements[pi];
+        const b = this.frameBoxes[p.track][trackPose(this.tracks[p.track], f).a];
+        const lo = Math.min(b.min.y, 0);
+        const hi = Math.max(b.max.y, 0) + labelRoom;
+        for (let i = 0; i < 8; i++) {
+          pts[n * 24 + i * 3] = (i & 1 ? b.max.x : b.min.x) + p.x;
+          pts[n * 24 + i * 3 + 1] = i & 2 ? hi : lo;
+          pts[n * 24 + i * 3 + 2] = (i & 4 ? b.max.z : b.min.z) + p.z;
+        }
+      });
+      corners.push(pts);
       const box = new Box3();
       if (x0 <= x1) {
         // keep the floor in view, and the labels over the heads
@@ -297,7 +322,7 @@ export class Viewer implements SkeletonView {
       return n ? sum.divideScalar(n) : new Vector3(0, 0.9, 0);
     });
     const direction = (this.mode === 'side' && this.arrangement.cells > 1 ? SIDE_VIEW : OVERLAY_VIEW).clone().applyAxisAngle(UP, heading);
-    return { direction, boxes, centres };
+    return { direction, boxes, centres, corners };
   }
 
   private clearLabels(): void {
