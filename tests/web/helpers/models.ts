@@ -4,7 +4,7 @@ import { readFileSync } from 'node:fs';
 import * as ort from 'onnxruntime-web';
 import { parseJson, validate } from '../../../web/src/contract/validate';
 import type { Manifest } from '../../../web/src/contract/types';
-import { createPredictor } from '../../../web/src/predictor/factory';
+import { createCheckedPredictor } from '../../../web/src/predictor/history';
 import { OrtRunner, type OrtModule } from '../../../web/src/predictor/ort-runner';
 import type { Predictor } from '../../../web/src/predictor/types';
 
@@ -21,5 +21,5 @@ export function nodePredictor(manifest: Manifest, id: string): Predictor {
   if (!entry) throw new Error(`no model ${id}`);
   const load = async (file: string) => new Uint8Array(readFileSync(new URL(file, modelsDir)));
   const runner = new OrtRunner(ort as unknown as OrtModule, entry, load);
-  return createPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: load });
+  return createCheckedPredictor({ entry, skeleton: manifest.skeleton, actions: manifest.actions, fps: manifest.fps, runner, loadFile: load });
 }

@@ -1,10 +1,8 @@
 // The one place that knows which predictor runs which method; everything else sees Predictor.
-// Every method's predictor is wrapped in the same guards (twin of export/sample/predictor.py's
-// predict): a history outside the training envelope gets named warnings, and every future is cut at
-// its first out-of-bounds frame, so no method can draw an exploding figure.
-import { toCanonical } from './canonical';
+// Every method's predictor is wrapped in the same guard (twin of export/sample/predictor.py's
+// predict): every future is cut at its first out-of-bounds frame, so no method can draw an exploding
+// figure. The history's warnings, its scale and the refusals' order are history.ts's.
 import { DirectPredictor } from './direct';
-import { checkEnvelope } from './envelope';
 import { cutOutOfBounds } from './guard';
 import { KeyposesPredictor } from './keyposes';
 import { LcpVaePredictor } from './lcp-vae';
@@ -16,7 +14,6 @@ import {
   type PredictRequest,
   type Predictor,
   type PredictorContext,
-  type RangeWarning,
 } from './types';
 import { WatPredictor } from './wat';
 
@@ -45,31 +42,15 @@ class Guarded implements Predictor {
   }
 
   async predict(history: History, req: PredictRequest, isCancelled?: () => boolean): Promise<Prediction> {
-    const { entry, skeleton, fps } = this.ctx;
+    const { entry, skeleton } = this.ctx;
     const n = entry.params.history_frames;
     const j = skeleton.joints.length;
     checkHistory(history, n, j);
-    const recent = history.positions.subarray((history.frames - n) * j * 3);
-    const env = (entry.params as { envelope?: Record<string, [number, number]> }).envelope;
-    const warnings = env ? checkEnvelope(toCanonical(recent, n, skeleton).canonical, n, fps, skeleton, env) : [];
-    let pred: Prediction;
-    try {
-      pred = await this.inner.predict(history, req, isCancelled);
-    } catch (e) {
-      // A refusal also names the envelope warnings, which may be its real cause.
-      if (e instanceof PredictError) throw new PredictError(refusalWithWarnings(e.message, warnings));
-      throw e;
-    }
-    cutOutOfBounds(pred, recent, n, skeleton);
-    pred.warnings = warnings;
+    const pred = await this.inner.predict(history, req, isCancelled);
+    cutOutOfBounds(pred, history.positions.subarray((history.frames - n) * j * 3), n, skeleton);
+    pred.warnings = [];   // the history's warnings are history.ts's (createCheckedPredictor)
     return pred;
   }
-}
-
-/** A refusal followed by the history's envelope warnings (twin of predictor.py refusal_with_warnings). */
-export function refusalWithWarnings(message: string, warnings: RangeWarning[]): string {
-  if (warnings.length === 0) return message;
-  return `${message}. The history is outside the training range: ${warnings.map((w) => w.message).join(' ')}`;
 }
 
 export function createPredictor(ctx: PredictorContext): Predictor {

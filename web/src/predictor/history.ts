@@ -149,9 +149,7 @@ class Checked implements Predictor {
   }
 }
 
-/** The predictor the site runs: the method's, guarded (factory.ts), with the history checks around it.
- * The inner predictor gets the entry without its envelope: the warnings are made here, once. */
+/** The predictor the site runs: the method's, guarded (factory.ts), with the history checks around it. */
 export function createCheckedPredictor(ctx: PredictorContext): Predictor {
-  const { envelope: _, ...params } = ctx.entry.params as { envelope?: unknown } & typeof ctx.entry.params;
-  return new Checked(createPredictor({ ...ctx, entry: { ...ctx.entry, params: params as typeof ctx.entry.params } }), ctx);
+  return new Checked(createPredictor(ctx), ctx);
 }
