@@ -69,6 +69,11 @@ describe('the model card', () => {
       const bib = (await s.page.locator('#bibtex-papers').textContent())!;
       for (const key of ['mao2022weakly', 'aliakbarian2021contextually', 'kiciroglu2022keyposes', 'peng2018deepmimic', 'cmumocap']) expect(bib).toContain(key);
       expect(await s.page.locator('#bibtex-project').textContent()).toContain('@software{motion_futures');
+      // each served model's paper as a readable citation (title, authors, venue and year), never a method id
+      const methods = JSON.parse(readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8')).models.map((m: { method: string }) => m.method) as string[];
+      expect(new RegExp(`\\b(${methods.filter((m) => m.includes('_')).join('|')})\\b`).test(text), 'a method id in the card').toBe(false);
+      const papers = await s.page.locator('#card td').allTextContents();
+      expect(papers.filter((t) => /, (CVPR|ICCV|3DV) \d{4}\)$/.test(t)).length, 'cited papers in the models table').toBeGreaterThanOrEqual(3);
       const { scroll, client } = await s.page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, client: document.documentElement.clientWidth }));
       expect(scroll).toBeLessThanOrEqual(client);
       await s.screenshot('model-card-phone.png');

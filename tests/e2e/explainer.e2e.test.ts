@@ -4,6 +4,8 @@
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
+import { index } from './data';
+import { clipTitle } from '../../web/src/ui/clip-name';
 
 const baseUrl = inject('baseUrl');
 const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
@@ -65,7 +67,24 @@ describe('how it works', () => {
     await moveAndExpect(page, 'var-delta', 'End', 1, ['var-stops', 'var-mean', 'var-delta-value']);
     expect(await page.locator('#fig-variance').getAttribute('data-source')).toMatch(/^(model|vectors)$/);
     expect(await page.locator('#fig-variance .fig-cite').textContent()).toMatch(/Curves: .*(variance_stop\.json|served WAT model)/);
+    if (await page.locator('#fig-variance').getAttribute('data-source') === 'model') {
+      // the sentence names the clip the curves really run on (the site's default clip) and its split
+      const clip = index.clips.find((c) => c.name === index.default?.clip) ?? index.clips.find((c) => c.role === 'test')!;
+      const status = (await page.locator('#fig-variance .fig-status').textContent())!;
+      expect(status).toContain(`frames of ${clipTitle(clip)} (${clip.name})`);
+      expect(status).not.toMatch(/walker walk forward|a test clip/);
+    }
     await session.screenshot('explainer-variance.png', page.locator('#fig-variance'));
+  });
+
+  it('explains the predictor\'s numbers where its read-out links (#numbers): cm first, field units and √18', async () => {
+    const section = page.locator('#numbers');
+    expect(await section.locator('h2').textContent()).toMatch(/numbers/i);
+    const words = (await section.textContent())!;
+    expect(words).toMatch(/Per-joint error/);
+    expect(words).toMatch(/Pose spread/);
+    expect(words).toMatch(/field units/);
+    expect(words).toMatch(/√18 ≈ 4\.2/);
   });
 
   it('keyposes: a lower threshold keeps more keyposes and rebuilds the clip more closely', async () => {

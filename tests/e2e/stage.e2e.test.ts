@@ -10,6 +10,8 @@ import type { Frame, Page } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
 import { defaultHistory, horizonFrames, index, manifest, otherClip, stageModel } from './data';
 import { NO_PROBLEMS, predicted, settle } from './predict-page';
+import { clipShortTitle, clipTitle } from '../../web/src/ui/clip-name';
+import { tintColour } from '../../web/src/viewer/palette';
 
 const baseUrl = inject('baseUrl');
 const FIRST_K = 5;
@@ -203,16 +205,30 @@ describe('the first view (1440 x 900)', () => {
     expect(marks).toEqual(p.flatMap((s) => (s.stopped || s.cut ? [{ frame: N + s.length - 1, cut: s.cut }] : [])));
   });
 
-  it('the read-out shows best-of-K ADE and FDE (root-relative and world) and APD, and copies them as JSON', async () => {
+  it('the read-out leads with the per-joint error and the pose spread in cm, then the field units; copies them as JSON', async () => {
     const r = await page.evaluate(() => window.motionFutures!.predictor.last!.readout!);
-    const apd = await page.locator('.readout-apd strong').textContent();
-    expect(apd).toBe(`${r.apd.toFixed(3)} m`);
+    const cmText = (v: number) => `${v.toFixed(1)} cm`;
+    const lead = (metric: string, kind: string) => page.locator(`.readout-lead tr[data-metric="${metric}"] td[data-kind="${kind}"]`).textContent();
+    expect(await lead('spread', 'over_frames')).toBe(cmText(r.spreadCm.overFrames));
+    expect(await lead('spread', 'last')).toBe(cmText(r.spreadCm.last));
+    // the field's numbers follow, labelled as such, with how they relate and where they are defined
+    expect(await page.locator('.readout-field-title').textContent()).toMatch(/^Field units/);
+    expect(await page.locator('.readout-about').textContent()).toMatch(/√18 ≈ 4\.2 × the per-joint mean/);
+    expect(new URL((await page.locator('.readout-help').getAttribute('href'))!).pathname).toMatch(/explainer\.html$/);
+    expect(new URL((await page.locator('.readout-help').getAttribute('href'))!).hash).toBe('#numbers');
+    expect(await page.locator('.readout-apd .metric').textContent()).toBe(`${r.apd.toFixed(3)} m`);
     if (r.covered) {
+      expect(await lead('per-joint', 'over_frames')).toBe(cmText(r.bestPerJointCm!.ade));
+      expect(await lead('per-joint', 'last')).toBe(cmText(r.bestPerJointCm!.fde));
+      // the lead numbers come first in the read-out
+      const order = await page.getByTestId('readout').evaluate((e) => [...e.querySelectorAll('.readout-lead, .readout-field')].map((x) => x.className));
+      expect(order).toEqual(['readout-lead', 'readout-field']);
       const cell = (metric: string, kind: string) => page.locator(`.readout-table tr[data-metric="${metric}"] td[data-kind="${kind}"]`).textContent();
       expect(await cell('best-of-K ADE', 'root_relative')).toBe(`${r.best!.rootRelative.ade.toFixed(3)} m`);
       expect(await cell('best-of-K ADE', 'world')).toBe(`${r.best!.world.ade.toFixed(3)} m`);
       expect(await cell('best-of-K FDE', 'root_relative')).toBe(`${r.best!.rootRelative.fde.toFixed(3)} m`);
       expect(await page.locator('.sample-numbers').count()).toBe(FIRST_K);
+      expect(await page.locator('.sample-numbers [data-kind="per_joint_cm"]').allTextContents()).toEqual(r.samples.map((x) => cmText(x.perJointCm!.ade)));
     } else {
       expect(await page.locator('.readout-uncovered').textContent()).toMatch(/ground truth covers/);
     }
@@ -222,14 +238,99 @@ describe('the first view (1440 x 900)', () => {
     expect(json.model).toBe(stageModel.id);
     expect(json.samples).toHaveLength(FIRST_K);
     expect(json.best_of_k === null).toBe(!r.covered);
+    expect(json.pose_spread_cm.over_frames).toBeCloseTo(r.spreadCm.overFrames, 3);
     if (r.covered) expect(json.best_of_k.root_relative.ade).toBeCloseTo(r.best!.rootRelative.ade, 5);
+    if (r.covered) expect(json.per_joint_cm_best_of_k.ade).toBeCloseTo(r.bestPerJointCm!.ade, 3);
+  });
+
+  it('every number in the read-out explains itself on hover (title) and on keyboard focus (tooltip, description)', async () => {
+    const numbers = page.locator('.stage-readout .metric');
+    const count = await numbers.count();
+    expect(count).toBeGreaterThanOrEqual(3); // spread twice and APD at least
+    for (let i = 0; i < count; i++) {
+      const n = numbers.nth(i);
+      const info = await n.evaluate((e) => {
+        const root = e.getRootNode() as ShadowRoot;
+        const described = root.getElementById(e.getAttribute('aria-describedby') ?? '')?.textContent ?? '';
+        return { tab: (e as HTMLElement).tabIndex, title: e.getAttribute('title') ?? '', described };
+      });
+      expect(info.tab, `number ${i} takes the focus`).toBe(0);
+      expect(info.title.length, `number ${i} has a title`).toBeGreaterThan(20);
+      expect(info.described).toBe(info.title);
+      await n.focus();
+      const tip = page.locator('.metric-tooltip');
+      await expect.poll(() => tip.isVisible()).toBe(true);
+      expect(await tip.textContent()).toBe(info.title);
+    }
+    // each sample's line of numbers: focusable and explained, each number with its own title
+    const line = page.locator('.sample-numbers').first();
+    expect(await line.getAttribute('tabindex')).toBe('0');
+    expect((await line.getAttribute('title'))!.length).toBeGreaterThan(20);
+    for (const t of await line.locator('.sample-number').evaluateAll((ns) => ns.map((x) => x.getAttribute('title') ?? ''))) expect(t.length).toBeGreaterThan(10);
+    await line.focus();
+    await expect.poll(() => page.locator('.metric-tooltip').textContent()).toBe(await line.getAttribute('title'));
+    await page.locator('#predict').focus();
+    await expect.poll(() => page.locator('.metric-tooltip').isVisible()).toBe(false);
+  });
+
+  it('names the clip as a newcomer reads it: action · person (split) · take, in the list, the facts, the status and the history', async () => {
+    const { clip } = defaultHistory();
+    const title = clipTitle(clip);
+    expect(title).not.toContain('_');
+    expect(await page.locator(`[data-clip="${clip.name}"] .clip-name`).evaluate((e) => e.firstChild?.textContent)).toBe(clipShortTitle(clip));
+    expect(await page.locator(`[data-clip="${clip.name}"]`).getAttribute('title')).toContain(title);
+    expect(await page.getByTestId('clip-info').locator('[data-field="clip"]').textContent()).toBe(title);
+    expect(await page.getByTestId('stage-status').textContent()).toContain(`of ${title}`);
+    expect(await page.locator('.history-note').textContent()).toContain(`of ${title}`);
+    // every clip in the list has its readable name
+    const titles = await page.locator('.clip-button').evaluateAll((bs) => bs.map((b) => [b.getAttribute('data-clip'), b.getAttribute('data-title')]));
+    for (const [name, t] of titles) expect(t, name!).toBe(clipTitle(index.clips.find((c) => c.name === name)!));
+  });
+
+  it('the legend\'s left/right swatches show the limb colours the sample figures are drawn in', async () => {
+    const backgrounds = await page.getByTestId('legend').locator('.legend-limbs .swatch').evaluateAll((ss) => ss.map((x) => getComputedStyle(x).backgroundImage));
+    expect(backgrounds).toHaveLength(2);
+    const rgb = (side: 'left' | 'right', i: number) => `rgb(${tintColour(side, { role: 'prediction', sample: i }).map((v) => Math.round(v * 255)).join(', ')})`;
+    for (let i = 0; i < FIRST_K; i++) {
+      expect(backgrounds[0], `left of #${i + 1}`).toContain(rgb('left', i));
+      expect(backgrounds[1], `right of #${i + 1}`).toContain(rgb('right', i));
+    }
+  });
+
+  it('the permalink carries the selected sample, the paused frame and the layout, and a new tab restores them', async () => {
+    await page.locator('input[name="layout"][value="overlay"]').check();
+    await page.locator('.sample-button').nth(1).click();
+    const frame = N + 7;
+    await page.evaluate((f) => { const pl = window.motionFutures!.player; pl.pause(); pl.seek(f); }, frame);
+    await expect.poll(() => new URL(page.url()).searchParams.get('frame')).toBe(String(frame));
+    const q = new URL(page.url()).searchParams;
+    expect(q.get('sample')).toBe('2');
+    expect(q.get('layout')).toBe('overlay');
+    const tab = await session.context.newPage();
+    try {
+      await tab.goto(page.url());
+      await predicted(tab);
+      await tab.waitForFunction((f) => window.motionFutures!.player.state.frame === f, frame);
+      expect(await tab.evaluate(() => window.motionFutures!.player.state.playing)).toBe(false);
+      expect(await tab.evaluate(() => window.motionFutures!.predictor.selected)).toBe(1);
+      expect(await tab.locator('.sample-button').nth(1).getAttribute('aria-pressed')).toBe('true');
+      expect(await tab.locator('input[name="layout"][value="overlay"]').isChecked()).toBe(true);
+      expect(await tab.locator('.message').count()).toBe(0);
+    } finally {
+      await tab.close();
+    }
+    // back to how the first view was, for the tests after this one
+    await page.locator('.sample-button').nth(1).click();
+    await page.locator('input[name="layout"][value="side"]').check();
+    await expect.poll(() => new URL(page.url()).searchParams.get('sample')).toBeNull();
+    expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
   it('the status line names the model, the history, the seed and the controls of what is shown', async () => {
     const text = await page.getByTestId('stage-status').textContent();
     const { clip, start } = defaultHistory();
     expect(text).toContain(stageModel.label);
-    expect(text).toContain(`frames ${start}–${start + N - 1} of ${clip.name}`);
+    expect(text).toContain(`frames ${start}–${start + N - 1} of ${clipTitle(clip)}`);
     expect(text).toMatch(/seed \d+/);
     expect(text).toContain(`K = ${FIRST_K}`);
   });
@@ -267,22 +368,45 @@ describe('never stale: every change predicts again on its own', () => {
     expect(await page.evaluate(() => document.body.dataset.predictionK)).toBe('3');
   });
 
-  it('another model changes the futures', async () => {
+  it('another model changes the futures; K keeps its value across models; a deterministic model has no seed', async () => {
     const other = manifest.models.find((m) => m.id !== stageModel.id && m.method !== 'keyposes')!;
     const before = await futures(page);
     await page.locator('#model-select').selectOption(other.id);
     await changedFrom(page, before);
     expect(await page.evaluate(() => document.body.dataset.predictionModel)).toBe(other.id);
+    const stochastic = other.controls.some((c) => c.id === 'k');
+    if (stochastic) expect(await page.locator('#control-k').inputValue()).toBe('3'); // the K set above, not the manifest's
+    // a model without K draws one future whatever the seed: the seed is off, and says why
+    expect(await page.locator('#seed').isDisabled()).toBe(!stochastic);
+    expect(await page.locator('#new-seed').isDisabled()).toBe(!stochastic);
+    expect(await page.locator('#seed-note').isVisible()).toBe(!stochastic);
+    if (!stochastic) expect(await page.locator('#seed-note').textContent()).toMatch(/deterministic/);
     await page.locator('#model-select').selectOption(stageModel.id);
     await page.waitForFunction((id) => document.body.dataset.predictionModel === id && document.body.dataset.predictStatus === 'done', stageModel.id);
+    expect(await page.locator('#control-k').inputValue()).toBe('3');
+    expect(await page.evaluate(() => document.body.dataset.predictionK)).toBe('3');
+    expect(await page.locator('#seed').isDisabled()).toBe(false);
+    expect(await page.locator('#seed-note').isVisible()).toBe(false);
+    // another stochastic model keeps it too
+    const third = manifest.models.find((m) => m.id !== stageModel.id && m.controls.some((c) => c.id === 'k'));
+    if (third) {
+      await page.locator('#model-select').selectOption(third.id);
+      expect(await page.locator('#control-k').inputValue()).toBe('3');
+      await page.waitForFunction((id) => document.body.dataset.predictionModel === id && document.body.dataset.predictStatus === 'done', third.id, { timeout: 60_000 });
+      await page.locator('#model-select').selectOption(stageModel.id);
+      await page.waitForFunction((id) => document.body.dataset.predictionModel === id && document.body.dataset.predictStatus === 'done', stageModel.id, { timeout: 60_000 });
+    }
   });
 
-  it('another history (another clip) changes the futures', async () => {
+  it('another history (another clip) changes the futures, and clears the last export\'s "Saved …"', async () => {
     const clip = otherClip(defaultHistory().clip.name);
     const before = await futures(page);
+    await Promise.all([page.waitForEvent('download'), page.locator('#export-csv').click()]);
+    await expect.poll(() => page.locator('.export-status').textContent()).toMatch(/^Saved /);
     await page.locator(`[data-clip="${clip.name}"]`).click();
     await changedFrom(page, before);
-    expect(await page.getByTestId('stage-status').textContent()).toContain(`of ${clip.name}`);
+    expect(await page.locator('.export-status').textContent()).toBe('');
+    expect(await page.getByTestId('stage-status').textContent()).toContain(`of ${clipTitle(clip)}`);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
@@ -318,6 +442,23 @@ describe('K = 10 side by side', () => {
       const shots = await figuresAt(page, await keyFrames(page));
       expect(shots[0].figures.filter((f) => f.role === 'prediction')).toHaveLength(10);
       expectFramed(shots, 'K = 10 side by side');
+      // every sample in the list, with no box scrolling inside the panel: with the list scrolled into
+      // the panel's view, all ten rows lie inside the panel and the window
+      const list = await page.locator('.sample-list').evaluate((l) => {
+        l.scrollIntoView({ block: 'start' });
+        const panel = l.closest('.panel')!.getBoundingClientRect();
+        const cs = getComputedStyle(l);
+        return { overflow: cs.overflowY, scroll: l.scrollHeight, client: l.clientHeight, panel: { top: panel.top, bottom: panel.bottom },
+          rows: [...l.querySelectorAll('.sample-item')].map((r) => { const b = r.getBoundingClientRect(); return { top: b.top, bottom: b.bottom }; }) };
+      });
+      expect(list.overflow).toBe('visible');
+      expect(list.scroll).toBeLessThanOrEqual(list.client + 1);
+      expect(list.rows).toHaveLength(10);
+      for (const [i, r] of list.rows.entries()) {
+        expect(r.top, `sample #${i + 1}`).toBeGreaterThanOrEqual(list.panel.top - 1);
+        expect(r.bottom, `sample #${i + 1}`).toBeLessThanOrEqual(Math.min(list.panel.bottom, 900) + 1);
+      }
+      await writeFile('/tmp/stage-k10-list.png', await session.screenshot('stage-k10-list.png'));
       await page.evaluate((n) => window.motionFutures!.player.seek(n + 12), N);
       await settle(page);
       await writeFile('/tmp/stage-k10-side.png', await session.screenshot('stage-k10-side.png'));
@@ -344,9 +485,21 @@ describe('the phone (390 x 844)', () => {
           expect(f.box.bottom).toBeLessThanOrEqual(s.height);
         }
       }
+      // the legend fits the screen (it wraps, never runs off it), and so does the sample list
+      const legend = await page.getByTestId('legend').evaluate((l) => ({ right: l.getBoundingClientRect().right, scroll: l.scrollWidth, client: l.clientWidth,
+        items: [...l.children].map((c) => c.getBoundingClientRect()).map((b) => ({ right: b.right, bottom: b.bottom })), bottom: l.getBoundingClientRect().bottom }));
+      expect(legend.right).toBeLessThanOrEqual(390);
+      expect(legend.scroll).toBeLessThanOrEqual(legend.client);
+      for (const item of legend.items) { expect(item.right).toBeLessThanOrEqual(390); expect(item.bottom).toBeLessThanOrEqual(legend.bottom + 1); }
+      const rows = await page.locator('.sample-item').evaluateAll((rs) => rs.map((r) => r.getBoundingClientRect().right));
+      expect(rows).toHaveLength(FIRST_K);
+      for (const right of rows) expect(right).toBeLessThanOrEqual(390);
+      expect(await page.evaluate(() => document.documentElement.scrollWidth)).toBeLessThanOrEqual(390);
       await page.evaluate((n) => window.motionFutures!.player.seek(n + 12), N);
       await settle(page);
       await writeFile('/tmp/stage-first-390.png', await session.screenshot('stage-first-390.png'));
+      await page.locator('.sample-list').evaluate((l) => l.scrollIntoView({ block: 'start' }));
+      await writeFile('/tmp/stage-first-390-list.png', await session.screenshot('stage-first-390-list.png'));
       expect(session.problems).toEqual(NO_PROBLEMS);
     } finally {
       await session.close();

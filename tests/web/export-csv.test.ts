@@ -1,8 +1,9 @@
-// CSV export of what is shown (long format) parses back to the positions; numbers are shortest float32.
+// CSV export of what is shown (long format) parses back to the positions, the ground truth's rows too;
+// numbers are shortest float32.
 import { describe, expect, it } from 'vitest';
 import { CSV_HEADER, csvText } from '../../web/src/export/csv';
 import { float32Text } from '../../web/src/export/shown';
-import { shownWithSamples } from './helpers/dropped';
+import { droppedWalk, shownWithSamples } from './helpers/dropped';
 
 function maxDiff(a: Float32Array, b: Float32Array): number {
   expect(a.length).toBe(b.length);
@@ -17,7 +18,12 @@ describe('CSV export', () => {
     const lines = csvText(s).trimEnd().split('\n');
     expect(lines[0]).toBe(CSV_HEADER);
     const J = s.joints;
-    expect(lines.length - 1).toBe(J * (s.history.frames + s.futures[0].frames + s.futures[1].frames));
+    const truth = s.truth!;
+    const m = droppedWalk();
+    // the clip's frames after the history, as far as the longest future
+    expect(truth.frames).toBe(Math.min(m.frames - 12 - s.history.frames, Math.max(s.futures[0].frames, s.futures[1].frames)));
+    expect(truth.frames).toBeGreaterThan(0);
+    expect(lines.length - 1).toBe(J * (s.history.frames + s.futures[0].frames + s.futures[1].frames + truth.frames));
     const back: Record<string, number[]> = {};
     for (const row of lines.slice(1)) {
       const [figure, frame, time, joint, x, y, z] = row.split(',');
@@ -25,11 +31,22 @@ describe('CSV export', () => {
       expect(s.skeleton.joints).toContain(joint);
       (back[figure] ??= []).push(Number(x), Number(y), Number(z));
     }
-    expect(Object.keys(back)).toEqual(['history', 'sample_1', 'sample_2']);
+    expect(Object.keys(back)).toEqual(['history', 'sample_1', 'sample_2', 'ground_truth']);
     expect(maxDiff(Float32Array.from(back.history), s.history.positions)).toBe(0);
     expect(maxDiff(Float32Array.from(back.sample_2), s.futures[1].positions)).toBe(0);
-    // futures' frames continue after the history
+    // the ground truth is the clip's own frames after the history (shownWithSamples: history from frame 12)
+    const from = (12 + s.history.frames) * J * 3;
+    expect(maxDiff(Float32Array.from(back.ground_truth), m.positions.slice(from, from + truth.frames * J * 3))).toBe(0);
+    // futures' and the truth's frames continue after the history
     expect(lines[1 + J * s.history.frames].startsWith(`sample_1,${s.history.frames},`)).toBe(true);
+    expect(lines.find((l) => l.startsWith('ground_truth,'))!.startsWith(`ground_truth,${s.history.frames},`)).toBe(true);
+  });
+
+  it('a Shown without a ground truth exports no ground-truth rows', async () => {
+    const s = await shownWithSamples(1);
+    const rows = csvText({ ...s, truth: undefined }).trimEnd().split('\n');
+    expect(rows.some((r) => r.startsWith('ground_truth,'))).toBe(false);
+    expect(rows.length - 1).toBe(s.joints * (s.history.frames + s.futures[0].frames));
   });
 
   it('numbers are the shortest decimals of their float32 values', () => {

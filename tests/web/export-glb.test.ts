@@ -1,5 +1,5 @@
 // GLB export of what is shown: re-imported with three.js's GLTFLoader in Node, the animated joint
-// nodes are where the history and each future put them, frame by frame.
+// nodes are where the history, each future and the ground truth put them, frame by frame.
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { AnimationMixer, LoopOnce, Vector3, type Object3D } from 'three';
 import { GLTFLoader, type GLTF } from 'three/examples/jsm/loaders/GLTFLoader.js';
@@ -61,7 +61,7 @@ describe('GLB export', () => {
     const { bytes, gltf, mixer } = await roundTrip(s);
     const H = s.history.frames;
     const names = gltf.scene.getObjectByName('motion-futures')!.children.map((c) => c.name);
-    expect(names).toEqual(['history', 'sample_1', 'sample_2', 'sample_3']);
+    expect(names).toEqual(['history', 'sample_1', 'sample_2', 'sample_3', 'ground_truth']);
     expect(gltf.animations[0].duration).toBeCloseTo((H + s.futures[0].frames - 1) / s.fps, 5);
     let err = 0;
     for (let f = 0; f < H; f++) {
@@ -69,6 +69,15 @@ describe('GLB export', () => {
       expect(visible).toBe(true);
       err = Math.max(err, worst(p, s.history.positions, f, s.joints));
       for (const fut of s.futures) expect(posesAt(gltf, mixer, f / s.fps, s, figureName(fut.sample)).visible).toBe(false);
+      expect(posesAt(gltf, mixer, f / s.fps, s, 'ground_truth').visible).toBe(false);
+    }
+    // the ground truth plays after the history like a future, every frame where the clip put it
+    const truth = s.truth!;
+    expect(truth.frames).toBeGreaterThan(0);
+    for (let f = 0; f < truth.frames; f++) {
+      const { p, visible } = posesAt(gltf, mixer, (H + f) / s.fps, s, 'ground_truth');
+      expect(visible, `ground_truth frame ${f}`).toBe(true);
+      err = Math.max(err, worst(p, truth.positions, f, s.joints));
     }
     for (const fut of s.futures) {
       for (let f = 0; f < fut.frames; f++) {
@@ -89,7 +98,7 @@ describe('GLB export', () => {
   it('the selected future only', async () => {
     const s = await shownWithSamples(3, 1);
     const { gltf, mixer } = await roundTrip(s);
-    expect(gltf.scene.getObjectByName('motion-futures')!.children.map((c) => c.name)).toEqual(['history', 'sample_2']);
+    expect(gltf.scene.getObjectByName('motion-futures')!.children.map((c) => c.name)).toEqual(['history', 'sample_2', 'ground_truth']);
     const fut = s.futures[0];
     const { p } = posesAt(gltf, mixer, (s.history.frames + 4) / s.fps, s, 'sample_2');
     expect(worst(p, fut.positions, 4, s.joints)).toBeLessThan(1e-5);

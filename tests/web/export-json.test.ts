@@ -5,7 +5,7 @@ import { parseJson, validate } from '../../web/src/contract/validate';
 import { motionFromDoc } from '../../web/src/motion/clip';
 import { clipDocuments, clipJson } from '../../web/src/export/clip-json';
 import type { Shown } from '../../web/src/export/shown';
-import { shownWithSamples } from './helpers/dropped';
+import { droppedWalk, shownWithSamples } from './helpers/dropped';
 
 function maxDiff(a: Float32Array, b: Float32Array): number {
   expect(a.length).toBe(b.length);
@@ -22,11 +22,22 @@ function expectedSample(s: Shown, i: number): Float32Array {
 }
 
 describe('JSON export follows the clip contract', () => {
-  it('K futures -> an array of clips, each the history then one future, read back exactly', async () => {
+  it('K futures -> an array of clips, each the history then one future, read back exactly, then the ground truth', async () => {
     const s = await shownWithSamples(3);
     const text = clipJson(s);
     const docs = parseJson(text, 'export.json') as unknown[];
-    expect(docs).toHaveLength(3);
+    expect(docs).toHaveLength(4);
+    const truth = validate(docs.pop(), 'clip', 'export.json[3]');
+    expect(truth.name).toBe('walk.ground_truth');
+    expect(truth.action).toBe('ground truth');
+    expect(truth.source).toMatchObject({ dataset: 'motion-futures ground truth', file: 'walk', start: 12, history_frames: 10 });
+    expect(truth.source).not.toHaveProperty('sample');
+    const m = droppedWalk();
+    const J = s.joints;
+    // the history then the clip's own next frames, as far as the longest future
+    const want = m.positions.slice(12 * J * 3, (12 + s.history.frames + s.truth!.frames) * J * 3);
+    expect(s.truth!.frames).toBe(Math.min(m.frames - 12 - s.history.frames, Math.max(...s.futures.map((f) => f.frames))));
+    expect(maxDiff(motionFromDoc(truth).positions, want)).toBe(0);
     docs.forEach((raw, i) => {
       const doc = validate(raw, 'clip', `export.json[${i}]`);
       expect(doc.name).toBe(`walk.sample_${i + 1}`);
@@ -39,11 +50,13 @@ describe('JSON export follows the clip contract', () => {
     });
   });
 
-  it('the selected future -> one clip document', async () => {
+  it('the selected future -> its clip and the ground truth; without a truth, one clip document', async () => {
     const s = await shownWithSamples(3, 2);
-    const doc = validate(parseJson(clipJson(s), 'one.json'), 'clip', 'one.json');
+    const docs = (parseJson(clipJson(s), 'two.json') as unknown[]).map((d, i) => validate(d, 'clip', `two.json[${i}]`));
+    expect(docs.map((d) => d.name)).toEqual(['walk.sample_3', 'walk.ground_truth']);
+    expect(maxDiff(motionFromDoc(docs[0]).positions, expectedSample(s, 0))).toBe(0);
+    const doc = validate(parseJson(clipJson({ ...s, truth: undefined }), 'one.json'), 'clip', 'one.json');
     expect(doc.name).toBe('walk.sample_3');
-    expect(maxDiff(motionFromDoc(doc).positions, expectedSample(s, 0))).toBe(0);
   });
 
   it('a broken Shown is refused with a message, not a half-written file', async () => {

@@ -12,6 +12,7 @@ import type { WatParams } from '../predictor/wat';
 import { streams } from '../rng/prng';
 import { sampleGaussian } from '../sampling/gaussian';
 import { firstStop, varianceCurve } from '../sampling/variance-stop';
+import { motionTitle } from '../ui/clip-name';
 import { el } from '../ui/dom';
 import type { ExplainerData } from './data';
 import { figureShell, num, pretty, readout, select, slider } from './figure';
@@ -27,6 +28,8 @@ interface Curves {
   maxFrames: number[];
   delta: number;
   source: string;
+  /** The history's clip, as a newcomer reads it (ui/clip-name.ts), with its name; model curves only. */
+  clip?: string;
 }
 
 const K = 6;
@@ -109,7 +112,8 @@ export async function mountVarianceFigure(host: HTMLElement, data: ExplainerData
         start(await watCurves(data, wat, action.input.value, seed));
         delta = 10 ** deltaSlider.value();
         draw();
-        f.status.textContent = `${K} futures of ${wat.label} from the first ${p.history_frames} frames of walker walk forward (a test clip), action ${pretty(action.input.value)}, seed ${seed}; the served δ is ${num(p.stop.delta)} m.`;
+        // names the clip the curves really come from (watCurves): the site's default clip, from frame 0
+        f.status.textContent = `${K} futures of ${wat.label} from the first ${p.history_frames} frames of ${current?.clip ?? 'the default clip'}, action ${pretty(action.input.value)}, seed ${seed}; the served δ is ${num(p.stop.delta)} m.`;
       } catch (err) {
         f.status.textContent = `The WAT model could not run here: ${(err as Error).message}`;
       }
@@ -133,6 +137,7 @@ async function watCurves(data: ExplainerData, wat: ModelEntry, action: string, s
   const n = p.history_frames;
   const stride = j * 3;
   const clip = await data.clip(data.defaultClip());
+  const entry = data.index.clips.find((c) => c.name === clip.name);
   const { canonical } = toCanonical(clipWindow(clip, 0, n), n, skeleton);
   const history = new Float32Array(K * n * stride);
   const onehot = new Float32Array(K * p.actions.length);
@@ -152,6 +157,7 @@ async function watCurves(data: ExplainerData, wat: ModelEntry, action: string, s
     names: curves.map((_, i) => `sample ${i + 1}`), curves, q: p.stop.q, tMin: p.stop.min_frames, tMax: p.future_frames,
     maxFrames: curves.map(() => p.future_frames),
     delta: p.stop.delta, source: `WAT samples for ${pretty(action)}`,
+    clip: `${motionTitle(clip, entry)} (${clip.name})`,
   };
 }
 

@@ -1,26 +1,33 @@
 // Export what is shown as clip documents of the contract (contract/clip.schema.json): one clip per
-// future, each the history followed by that future, so it plays as one continuous motion.
-// One future -> one clip document; several -> a JSON array of clip documents.
+// future, each the history followed by that future, so it plays as one continuous motion, and after
+// them the ground truth the same way (name "<clip>.ground_truth", action "ground truth").
+// One clip document alone -> that document; several -> a JSON array of clip documents.
 import type { ClipDoc } from '../contract/types';
 import { validate } from '../contract/validate';
-import { checkShown, figureName, float32Text, type Shown } from './shown';
+import { checkShown, figureName, float32Text, TRUTH_FIGURE, type Shown } from './shown';
 
 export function clipDocuments(s: Shown): ClipDoc[] {
   checkShown(s);
   const J = s.joints;
   const frame = (arr: Float32Array, f: number) =>
     Array.from({ length: J }, (_, j) => [0, 1, 2].map((c) => Number(float32Text(arr[(f * J + j) * 3 + c])))) as number[][];
-  return s.futures.map((fut) => {
-    const frames = s.history.frames + fut.frames;
+  const figures = [
+    ...s.futures.map((fut) => ({ name: figureName(fut.sample), sample: fut.sample as number | null, frames: fut.frames, positions: fut.positions })),
+    ...(s.truth ? [{ name: TRUTH_FIGURE, sample: null, frames: s.truth.frames, positions: s.truth.positions }] : []),
+  ];
+  return figures.map((fig) => {
+    const frames = s.history.frames + fig.frames;
     const positions: number[][][] = [];
     for (let f = 0; f < s.history.frames; f++) positions.push(frame(s.history.positions, f));
-    for (let f = 0; f < fut.frames; f++) positions.push(frame(fut.positions, f));
+    for (let f = 0; f < fig.frames; f++) positions.push(frame(fig.positions, f));
+    const truth = fig.sample === null;
     const doc: ClipDoc = {
-      format: 'motion-futures/clip', version: 2, name: `${s.name}.${figureName(fut.sample)}`, action: 'prediction', fps: s.fps,
+      format: 'motion-futures/clip', version: 2, name: `${s.name}.${fig.name}`, action: truth ? 'ground truth' : 'prediction', fps: s.fps,
       loops: false, skeleton: { joints: s.skeleton.joints, parents: s.skeleton.parents },
       split: { role: 'test', train: [], test: [[s.history.frames, frames]] },
       source: {
-        dataset: 'motion-futures prediction', file: s.name, ...(s.model ? { model: s.model } : {}), sample: fut.sample + 1,
+        dataset: truth ? 'motion-futures ground truth' : 'motion-futures prediction', file: s.name,
+        ...(s.model ? { model: s.model } : {}), ...(truth ? {} : { sample: fig.sample! + 1 }),
         start: s.start, history_frames: s.history.frames,
       } as ClipDoc['source'],
       positions,

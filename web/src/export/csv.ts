@@ -1,8 +1,9 @@
 // Export what is shown as CSV, long format: one row per figure, frame and joint.
 //   figure,frame,time,joint,x,y,z
-// figure is "history" or "sample_<n>"; frame counts from the first history frame, so a future's
-// rows start at the history length; time = frame / fps in seconds; x, y, z in metres, y up.
-import { checkShown, figureName, float32Text, type Shown } from './shown';
+// figure is "history", "sample_<n>" or "ground_truth" (what the clip really does next, after the
+// samples); frame counts from the first history frame, so a future's and the truth's rows start at
+// the history length; time = frame / fps in seconds; x, y, z in metres, y up.
+import { checkShown, figureName, float32Text, TRUTH_FIGURE, type Shown } from './shown';
 
 export const CSV_HEADER = 'figure,frame,time,joint,x,y,z';
 
@@ -21,5 +22,6 @@ export function csvText(s: Shown): string {
   };
   add(figureName(null), s.history.positions, s.history.frames, 0);
   for (const fut of s.futures) add(figureName(fut.sample), fut.positions, fut.frames, s.history.frames);
+  if (s.truth) add(TRUTH_FIGURE, s.truth.positions, s.truth.frames, s.history.frames);
   return rows.join('\n') + '\n';
 }

@@ -6,6 +6,7 @@
 //         history_chest       its translation track is the offset from its parent joint
 //         ...
 //     sample_1 ...         <- each future; hidden (scale 0, STEP) until half a frame before its first
+//     ground_truth         <- what the clip really does next, the same way (when the clip has it)
 // Time: frame f of the history at f / fps; future frame i at (history frames + i) / fps. Like the
 // page, the history holds its last pose while the futures play, and each future holds its last pose.
 import {
@@ -14,7 +15,7 @@ import {
 } from 'three';
 import { GLTFExporter } from 'three/examples/jsm/exporters/GLTFExporter.js';
 import { sideOf, tintColour, type Side } from '../viewer/palette';
-import { checkShown, figureName, type Shown } from './shown';
+import { checkShown, figureName, TRUTH_FIGURE, type Shown } from './shown';
 
 export const JOINT_RADIUS = 0.02;
 
@@ -23,7 +24,7 @@ export function jointNodeName(figure: string, joint: string): string {
   return `${figure}_${joint}`;
 }
 
-interface Figure { name: string; sample: number | null; positions: Float32Array; frames: number; first: number }
+interface Figure { name: string; sample: number | null; truth?: boolean; positions: Float32Array; frames: number; first: number }
 
 /** The scene and animation of a Shown (exported by glbBytes; also useful for tests and previews). */
 export function shownScene(s: Shown): { scene: Group; clip: AnimationClip } {
@@ -37,12 +38,13 @@ export function shownScene(s: Shown): { scene: Group; clip: AnimationClip } {
   const figures: Figure[] = [
     { name: figureName(null), sample: null, positions: s.history.positions, frames: s.history.frames, first: 0 },
     ...s.futures.map((f) => ({ name: figureName(f.sample), sample: f.sample, positions: f.positions, frames: f.frames, first: s.history.frames })),
+    ...(s.truth ? [{ name: TRUTH_FIGURE, sample: null, truth: true, positions: s.truth.positions, frames: s.truth.frames, first: s.history.frames }] : []),
   ];
   for (const fig of figures) {
     const group = new Group();
     group.name = fig.name;
     scene.add(group);
-    const tint = fig.sample === null ? { role: 'history' as const } : { role: 'prediction' as const, sample: fig.sample };
+    const tint = fig.truth ? { role: 'truth' as const } : fig.sample === null ? { role: 'history' as const } : { role: 'prediction' as const, sample: fig.sample };
     const materials = new Map<Side, MeshStandardMaterial>();
     const material = (side: Side) => {
       if (!materials.has(side)) {

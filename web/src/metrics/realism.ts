@@ -17,13 +17,18 @@ function frames(length: number, count: number, joints: number, what: string): nu
   return f;
 }
 
-/** Mean over joints of the per-joint distance between pose `a` of x and pose `b` of y (metres). */
+/** Mean over joints of the per-joint distance between pose `a` of x and pose `b` of y (metres). A square
+ *  root of the sum of squares, not Math.hypot: the same distance for poses in metres, about 7 times
+ *  faster, which the stage's read-out needs at K = 50 (1225 pairs of samples, every frame). */
 function meanJointDistance(x: Motion, a: number, y: Motion, b: number, joints: number): number {
   let sum = 0;
   for (let j = 0; j < joints; j++) {
     const p = (a * joints + j) * 3;
     const q = (b * joints + j) * 3;
-    sum += Math.hypot(x[p] - y[q], x[p + 1] - y[q + 1], x[p + 2] - y[q + 2]);
+    const dx = x[p] - y[q];
+    const dy = x[p + 1] - y[q + 1];
+    const dz = x[p + 2] - y[q + 2];
+    sum += Math.sqrt(dx * dx + dy * dy + dz * dz);
   }
   return sum / joints;
 }

@@ -5,9 +5,12 @@
 // Format (one name per field; controls by their manifest id, verbatim):
 //   v=0.1.0 &model=ID &hash=<first 12 hex of the model's sha256> &clip=NAME &start=F &seed=S
 //   &<control id>=VALUE ...   int/number: decimal; bool: 1|0; actions: comma-separated names
+//   &sample=N &frame=F &layout=overlay|side   what the stage shows of it (each optional): the selected
+//   sample as the labels number it (#N, from 1), the paused timeline frame, the layout
 import type { ControlSpec, Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import type { ControlValue } from '../ui/controls';
+import type { LayoutMode } from '../viewer/layout';
 
 export type { ControlValue };
 
@@ -30,6 +33,18 @@ export interface ShareState {
   controls: Record<string, ControlValue>;
   /** Default: a clip. A dropped file makes the state unlinkable. */
   source?: HistorySource;
+  /** What the stage shows of the prediction; each part is optional. */
+  view?: StageView;
+}
+
+export const LAYOUTS: readonly LayoutMode[] = ['overlay', 'side'];
+
+/** The selected sample (0-based; the link writes it from 1, as the labels number it), the paused
+ *  timeline frame (history frames first), and the layout. */
+export interface StageView {
+  sample?: number;
+  frame?: number;
+  layout?: LayoutMode;
 }
 
 /** The model the page opens on, and what a link naming no model (or an unknown one) shows: WAT
@@ -50,6 +65,7 @@ export interface LinkState {
   start?: number;
   seed?: number;
   controls: Record<string, ControlValue>;
+  view?: StageView;
 }
 
 export interface Problem {
@@ -59,7 +75,7 @@ export interface Problem {
 
 export const HASH_CHARS = 12;
 /** Names of the state's own fields, and of the view options that share the same parameter space. */
-export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed'] as const;
+export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout'] as const;
 export const VIEW_KEYS = ['controls', 'autoplay', 'predict', 'page'] as const;
 const RESERVED = new Set<string>([...STATE_KEYS, ...VIEW_KEYS]);
 /** The action-sequence composer's length when the manifest gives no max_length (controls.ts). */
@@ -151,6 +167,13 @@ export function validateState(state: ShareState, manifest: Manifest): ModelEntry
   }
   const extra = Object.keys(state.controls).find((id) => !entry.controls.some((c) => c.id === id));
   if (extra) throw new UrlStateError(`${entry.label} has no control '${extra}'`);
+  const v = state.view ?? {};
+  const k = typeof state.controls.k === 'number' ? state.controls.k : 1;
+  if (v.sample !== undefined && !(Number.isInteger(v.sample) && v.sample >= 0 && v.sample < k)) {
+    throw new UrlStateError(`the selected sample must be one of #1–#${k}, got ${v.sample + 1}`);
+  }
+  if (v.frame !== undefined && !(Number.isInteger(v.frame) && v.frame >= 0)) throw new UrlStateError(`the frame must be a frame number, got ${v.frame}`);
+  if (v.layout !== undefined && !LAYOUTS.includes(v.layout)) throw new UrlStateError(`the layout must be ${LAYOUTS.join(' or ')}, got '${v.layout}'`);
   return entry;
 }
 
@@ -172,6 +195,10 @@ export function encodeState(state: ShareState, manifest: Manifest): [string, str
     ['start', String(state.start)], ['seed', String(state.seed)],
   ];
   for (const spec of entry.controls) out.push([spec.id, encodeValue(spec, state.controls[spec.id])]);
+  const v = state.view ?? {};
+  if (v.sample !== undefined) out.push(['sample', String(v.sample + 1)]);
+  if (v.frame !== undefined) out.push(['frame', String(v.frame)]);
+  if (v.layout !== undefined) out.push(['layout', v.layout]);
   return out;
 }
 
@@ -258,6 +285,29 @@ export function decodeState(params: Iterable<[string, string]>, manifest: Manife
       warn(`${(err as Error).message}; using the default ${spec.label.toLowerCase()}.`);
     }
   }
+
+  // What the stage shows: a bad value is named and left at the page's default.
+  const view: StageView = {};
+  const sample = q.get('sample');
+  if (sample !== undefined) {
+    const v = wholeNumber(sample);
+    const k = typeof state.controls.k === 'number' ? state.controls.k : undefined;
+    if (v === null || v < 1) warn(`The selected sample must be a sample number from 1, got '${sample}'; none is selected.`);
+    else if (k !== undefined && v > k) warn(`The link selects sample #${v}, but it asks for ${k} samples; none is selected.`);
+    else view.sample = v - 1;
+  }
+  const frame = q.get('frame');
+  if (frame !== undefined) {
+    const v = wholeNumber(frame);
+    if (v === null) warn(`The frame must be a frame number, got '${frame}'; the futures play from the start.`);
+    else view.frame = v;
+  }
+  const layout = q.get('layout');
+  if (layout !== undefined) {
+    if ((LAYOUTS as readonly string[]).includes(layout)) view.layout = layout as LayoutMode;
+    else warn(`The layout must be ${LAYOUTS.join(' or ')}, got '${layout}'; the page picks one.`);
+  }
+  if (Object.keys(view).length) state.view = view;
 
   const known = new Set<string>([...RESERVED, ...entry.controls.map((c) => c.id)]);
   for (const key of q.keys()) {

@@ -16,11 +16,14 @@ import {
 import { SITE_VERSION } from '../share/version';
 import { olderRelease } from '../share/versions';
 import type { LayoutMode } from '../viewer/layout';
+import { tintColour, type Rgb } from '../viewer/palette';
+import type { TrackRole } from '../viewer/tracks';
 import { mountViewer } from '../viewer/mount';
 import type { Track } from '../viewer/tracks';
 import type { SkeletonView } from '../viewer/viewer';
 import { ClipBrowser } from './clip-browser';
 import { mountClipInfo } from './clip-info';
+import { clipTitle, motionTitle } from './clip-name';
 import { el, type StatusSink } from './dom';
 import { bindKeyboard } from './keyboard';
 import type { KeyAction } from './keys';
@@ -36,6 +39,7 @@ import { mountImportPanel } from './import-panel';
 import { mountCapturePanel } from './capture';
 import { mountViewSummary } from './view-summary';
 import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar } from './stage-parts';
+import { mountStageView } from './stage-view';
 
 /** How an instance looks and starts, apart from the prediction state. */
 export interface ViewOptions {
@@ -140,6 +144,19 @@ export function defaultLayout(k: number): LayoutMode {
   return k > 3 ? 'side' : 'overlay';
 }
 
+/** The legend's left/right swatches as the figures draw their limbs: one step per figure colour
+ *  family on stage (each sample's own pair, or the clip's), as CSS backgrounds. */
+export function limbSwatches(role: TrackRole, k: number, shown = 10): { left: string; right: string } {
+  const css = ([r, g, b]: Rgb) => `rgb(${Math.round(r * 255)} ${Math.round(g * 255)} ${Math.round(b * 255)})`;
+  const side = (s: 'left' | 'right') => {
+    const n = role === 'prediction' ? Math.max(1, Math.min(k, shown)) : 1;
+    const colours = Array.from({ length: n }, (_, i) => css(tintColour(s, { role, sample: i })));
+    if (n === 1) return colours[0];
+    return `linear-gradient(90deg, ${colours.map((c, i) => `${c} ${((100 * i) / n).toFixed(1)}% ${((100 * (i + 1)) / n).toFixed(1)}%`).join(', ')})`;
+  };
+  return { left: side('left'), right: side('right') };
+}
+
 export function clipTrack(m: Motion): Track {
   return { id: `clip:${m.name}`, role: 'clip', positions: m.positions, frames: m.frames, joints: m.joints, startFrame: 0, label: m.name };
 }
@@ -156,18 +173,43 @@ export function startApp(parts: AppParts, o: AppOptions): App {
   if (options.page) catchUncaught(banner);
   const { view } = mountViewer(parts.viewer);
   const setPhase = mountPhaseLabel(parts.viewer);
+  mountStageView(parts.viewer, view); // camera presets, closest-to-truth and ground-truth toggles
   const player = new Player(30);
   const playback = mountPlaybackBar(parts.playback, player);
   /** The first predicted frame of what is on stage; null for a clip alone. */
   let origin: number | null = null;
-  player.subscribe((s) => { view.setFrame(s.position); setPhase(s.frame, s.fps, origin); });
+  // A paused frame is part of the link (web/src/share/url-state.ts); a playing one is not.
+  let pausedFrame: number | null = null;
+  let shareTimer: ReturnType<typeof setTimeout> | null = null;
+  player.subscribe((s) => {
+    view.setFrame(s.position); setPhase(s.frame, s.fps, origin);
+    const frame = s.playing ? null : s.frame;
+    if (frame !== pausedFrame) {
+      pausedFrame = frame;
+      if (shareTimer !== null) clearTimeout(shareTimer);
+      shareTimer = setTimeout(() => { shareTimer = null; refreshShare(); }, 250); // not on every step of a drag
+    }
+  });
 
   // The layout follows K until the user picks one.
   let layoutChosen = false;
   const setLayout = (mode: LayoutMode) => { view.setLayout(mode); toolbar.setLayout(mode); };
-  const chooseLayout = (mode: LayoutMode) => { layoutChosen = true; setLayout(mode); };
+  const chooseLayout = (mode: LayoutMode) => { layoutChosen = true; setLayout(mode); refreshShare(); };
   const toolbar = mountStageToolbar(parts.toolbar, view.layout, { onLayout: chooseLayout, onResetView: () => view.resetView() });
   const stageStatus = mountStageStatus(parts.status);
+  /** The legend's limb swatches follow the figures on stage (the toolbar reads --left and --right). */
+  const limbLegend = (role: TrackRole, k: number) => {
+    const { left, right } = limbSwatches(role, k);
+    parts.toolbar.style.setProperty('--left', left);
+    parts.toolbar.style.setProperty('--right', right);
+  };
+  /** The export's last "Saved …" belongs to what was on stage then: a new clip or prediction clears it. */
+  const clearExportStatus = () => {
+    const line = parts.panel.querySelector('.export-status');
+    if (line) line.textContent = '';
+    o.status('exportStatus', undefined);
+    o.status('exportFile', undefined);
+  };
   const rangeNotice = mountRangeNotice(parts.notice);
 
   const panel = parts.panel;
@@ -182,6 +224,12 @@ export function startApp(parts: AppParts, o: AppOptions): App {
   let linking = false;
   const linkParams = new Map(o.link);
   const firstView = !linkParams.has('model');
+  /** A clip's readable name (ui/clip-name.ts): the index entry's facts, else what its name says. */
+  const titleOf = (name: string): string => {
+    if (motion && motion.name === name) return motionTitle(motion, clips.entry(name));
+    const entry = clips.entry(name);
+    return entry ? clipTitle(entry) : name;
+  };
 
   const askFutures = () => { predictor.setLive(true); void predictor.predict(); };
   const bar = mountMinimalBar(parts.bar, {
@@ -199,6 +247,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     stageStatus: (text, state) => { stageStatus(text, state); },
     timeline: (marks) => { origin = marks?.origin ?? null; playback.setTimeline(marks); },
     beforeShow: (k) => { if (!layoutChosen) setLayout(defaultLayout(k)); },
+    clipTitle: (name) => titleOf(name),
     onShown: () => {
       shown = predictor.last;
       const p = shown!.prediction;
@@ -206,10 +255,12 @@ export function startApp(parts: AppParts, o: AppOptions): App {
         history: true, truth: Boolean(motion && shown && motion.frames > shown.start + (modelOf(shown.model)?.params.history_frames ?? 0)),
         k: p.k, cut: p.samples.flatMap((s, i) => (s.cut ? [i] : [])),
       });
+      limbLegend('prediction', p.k);
+      clearExportStatus();
       rangeNotice(p.warnings ?? null, modelOf(shown!.model)?.label ?? shown!.model);
       refreshShare(); exporter.refresh(); summarise();
     },
-    onSelect: () => { exporter.refresh(); summarise(); },
+    onSelect: (sample) => { playback.select(sample); exporter.refresh(); summarise(); refreshShare(); },
   });
   // A click on a figure or its label selects it, a second click (or a click on nothing) lets go.
   view.onPick((sample) => predictor.select(sample !== null && sample === predictor.selected ? null : sample));
@@ -222,7 +273,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
   function summarise(): void {
     const entry = shown && modelOf(shown.model);
     updateSummary({
-      clip: motion?.name ?? null, clipFrames: motion?.frames, fps: motion?.fps ?? player.state.fps, selected: predictor.selected,
+      clip: motion ? titleOf(motion.name) : null, clipFrames: motion?.frames, fps: motion?.fps ?? player.state.fps, selected: predictor.selected,
       prediction: shown && entry ? { model: entry.label, start: shown.start, historyFrames: entry.params.history_frames, p: shown.prediction } : null,
       list: options.controls === 'full',
     });
@@ -253,10 +304,12 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       view.clear(); player.load(0); toolbar.setLegend(null); stageStatus('No clip on stage.', 'clip'); refreshShare(); return;
     }
     view.setTracks([clipTrack(m)], m.skeleton);
-    toolbar.setLegend({ clip: m.name, history: false, truth: false, k: 0 });
+    toolbar.setLegend({ clip: titleOf(m.name), history: false, truth: false, k: 0 });
+    limbLegend('clip', 0);
+    clearExportStatus();
     player.load(m.frames, m.fps);
     if (options.autoplay || linking) player.play(); // a clip the user picked plays
-    const what = from.kind === 'dropped' ? `your file ${from.name}` : `the clip ${m.name}`;
+    const what = from.kind === 'dropped' ? `your file ${from.name}` : `the clip ${titleOf(m.name)}`;
     stageStatus(`On stage: ${what}, ${m.frames} frames (${seconds(m.frames, m.fps)}).${predictor.predictsOnChange ? ' Predicting…'
       : options.controls === 'full' ? ' Press Predict (P) for its futures.' : ''}`, 'clip');
     refreshShare();
@@ -292,10 +345,20 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     if (!motion) return { unlinkable: 'No clip is on stage, so there is nothing to link.' };
     const state: ShareState = {
       version: SITE_VERSION, model: inputs.model.id, hash: shortHash(inputs.model.hash), clip: motion.name,
-      start: inputs.start, seed: inputs.seed, controls: inputs.controls, source,
+      start: inputs.start, seed: inputs.seed, controls: inputs.controls, source, view: stageView(),
     };
     const why = unlinkableReason(state);
     return why ? { unlinkable: why } : { state };
+  }
+
+  /** What the stage shows of the prediction on it: the selected sample, a paused frame, the layout. */
+  function stageView(): ShareState['view'] {
+    if (!predictor.last) return undefined;
+    return {
+      sample: predictor.selected ?? undefined,
+      frame: player.state.playing ? undefined : player.state.frame,
+      layout: view.layout,
+    };
   }
 
   function refreshShare(): void {
@@ -318,7 +381,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       }
     }
     share.update(shareable);
-    bar.update(shareable, predictor.inputsNow()?.model.label ?? '', motion?.name ?? '',
+    bar.update(shareable, predictor.inputsNow()?.model.label ?? '', motion ? titleOf(motion.name) : '',
       predictor.last ? (stochastic() ? 'New futures' : null) : 'Show futures');
     o.onLink?.(search);
   }
@@ -357,6 +420,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     }
     await predictor.start(asked?.model);
     if (asked) predictor.setInputs(asked);
+    if (asked?.view?.layout) { layoutChosen = true; setLayout(asked.view.layout); }
     if (options.autoPredict) predictor.warm();
     return asked;
   };
@@ -383,13 +447,18 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     linking = true;
     refreshShare();
     if (!options.autoPredict && motion) {
-      stageStatus(`On stage: the clip ${motion.name}, ${motion.frames} frames (${seconds(motion.frames, motion.fps)}). `
+      stageStatus(`On stage: the clip ${titleOf(motion.name)}, ${motion.frames} frames (${seconds(motion.frames, motion.fps)}). `
         + `${options.controls === 'full' ? 'Press Predict (P) for its futures.' : 'Press "Show futures" for its futures.'}`, 'clip');
     }
     if (options.autoPredict && motion && predictor.manifest) {
       predictor.setLive(true);
       await predictor.predict();
       if (!options.autoplay && predictor.last) { player.pause(); player.seek(Math.floor(player.state.length / 2)); }
+      // what the link's stage showed: its selected sample and its paused frame
+      if (predictor.last && asked?.view) {
+        if (asked.view.sample !== undefined) predictor.select(asked.view.sample);
+        if (asked.view.frame !== undefined) { player.pause(); player.seek(asked.view.frame); }
+      }
     }
   });
 

@@ -1,6 +1,7 @@
 // Facts about the current clip, including the licence line of its source.
 import type { ClipIndexEntry } from '../contract/types';
 import type { Motion } from '../motion/clip';
+import { motionTitle } from './clip-name';
 import { el } from './dom';
 
 export interface ClipInfo {
@@ -18,7 +19,7 @@ export function mountClipInfo(container: HTMLElement): ClipInfo {
       const loop = m.loops ? `yes${m.cycleFrames ? ` (cycle ${m.cycleFrames} frames)` : ''}` : 'no';
       const own = entry?.name === m.name ? entry : undefined;
       const rows: [string, string][] = [
-        ['Name', m.name], ['Action', m.action],
+        ['Clip', motionTitle(m, own)], ['Name', m.name], ['Action', m.action],
         ...(own?.subject !== undefined ? [['Person', `subject ${own.subject}`] as [string, string]] : []),
         ...(own?.take ? [['Take', own.take] as [string, string]] : []),
         ['Frames', `${m.frames} (${(m.frames / m.fps).toFixed(2)} s)`],

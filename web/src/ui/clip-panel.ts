@@ -1,7 +1,8 @@
 // The clip list, grouped by split role with the test clips first, then by action (with the index's
 // note on how the action's held-out people differ), each clip with its person and take when the
-// index names them. The list grows with the page: it does not scroll inside the scrolling panel.
+// index names them, by its readable name (ui/clip-name.ts). The list grows with the page: it does not scroll inside the scrolling panel.
 import type { ClipIndexEntry, Role } from '../contract/types';
+import { clipShortTitle, clipTitle } from './clip-name';
 import { el } from './dom';
 
 const GROUPS: { role: Role; title: string }[] = [
@@ -18,13 +19,13 @@ export interface ClipPanel {
 const pretty = (s: string) => s.replace(/_/g, ' ');
 
 function clipButton(entry: ClipIndexEntry, role: Role, onSelect: (entry: ClipIndexEntry) => void): HTMLButtonElement {
-  const who = [entry.subject !== undefined ? `subject ${entry.subject}` : null, entry.take && entry.take !== entry.name ? `take ${entry.take}` : null]
-    .filter(Boolean).join(', ');
+  const title = clipTitle(entry);
   const button = el('button', {
-    type: 'button', class: 'clip-button', 'data-clip': entry.name,
-    title: `${entry.name}: ${entry.action}${who ? `, ${who}` : ''}, ${entry.frames} frames`,
+    type: 'button', class: 'clip-button', 'data-clip': entry.name, 'data-title': title,
+    title: `${title}: ${entry.name}, ${entry.frames} frames`,
   },
-  el('span', { class: 'clip-name' }, entry.name, who ? el('span', { class: 'clip-who' }, who) : null),
+  // The readable name (its action and split are the headings above it), the file's own name below it.
+  el('span', { class: 'clip-name' }, clipShortTitle(entry), el('span', { class: 'clip-who' }, entry.name)),
   el('span', { class: `role-badge role-${role.replace('+', '-')}` }, role),
   el('span', { class: 'clip-meta' }, `${entry.frames} f`));
   button.addEventListener('click', () => onSelect(entry));

@@ -1,5 +1,6 @@
-// "Export": download what is on stage (the history with all K futures, or with the selected one)
-// as GLB (opens in Blender), as clip JSON (the contract's clip format) or as CSV.
+// "Export": download what is on stage (the history with all K futures, or with the selected one, and
+// the ground truth that follows the history as its own figure "ground_truth") as GLB (opens in
+// Blender), as clip JSON (the contract's clip format) or as CSV.
 //
 // Mount API (the lead wires it into app.ts):
 //   const exporter = mountExportPanel(addSection(panel, 'export', 'Export').body, {
@@ -36,9 +37,9 @@ export interface ExportPanel {
 }
 
 const FORMATS: { id: ExportFormat; label: string; title: string; type: string }[] = [
-  { id: 'glb', label: 'GLB', title: 'Animated joints for Blender or any glTF viewer', type: 'model/gltf-binary' },
-  { id: 'json', label: 'JSON', title: 'Clip files of the contract (history + one future each)', type: 'application/json' },
-  { id: 'csv', label: 'CSV', title: 'figure, frame, time, joint, x, y, z (metres, y up)', type: 'text/csv' },
+  { id: 'glb', label: 'GLB', title: 'Animated joints for Blender or any glTF viewer; the ground truth is the node "ground_truth"', type: 'model/gltf-binary' },
+  { id: 'json', label: 'JSON', title: 'Clip files of the contract (history + one future each; the ground truth as "<clip>.ground_truth")', type: 'application/json' },
+  { id: 'csv', label: 'CSV', title: 'figure, frame, time, joint, x, y, z (metres, y up); the ground truth\'s rows have figure "ground_truth"', type: 'text/csv' },
 ];
 
 function download(fileName: string, data: Blob): void {
@@ -67,9 +68,10 @@ export function mountExportPanel(container: HTMLElement, options: ExportPanelOpt
     let s: Shown | null = null;
     try { s = options.shown(); } catch { s = null; }
     buttons.forEach((b) => { b.disabled = !s; });
+    const truth = s?.truth ? ' and the ground truth' : '';
     what.textContent = !s ? 'Predict first: the history and its futures can then be saved.'
-      : s.futures.length === 1 ? `The history of ${s.name} with future #${s.futures[0].sample + 1}.`
-        : `The history of ${s.name} with all ${s.futures.length} futures (select one to save only it).`;
+      : s.futures.length === 1 ? `The history of ${s.name} with future #${s.futures[0].sample + 1}${truth}.`
+        : `The history of ${s.name} with all ${s.futures.length} futures${truth} (select one to save only it).`;
   };
 
   const exportAs = async (format: ExportFormat): Promise<string | null> => {

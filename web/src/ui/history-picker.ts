@@ -5,8 +5,9 @@ import { el } from './dom';
 
 export interface HistoryPicker {
   root: HTMLElement;
-  /** Set the clip and the history length; keeps the start when it still fits. */
-  setClip(m: Motion | null, historyFrames: number): void;
+  /** Set the clip and the history length; keeps the start when it still fits. `title`: the clip's
+   *  readable name (ui/clip-name.ts), else its name. */
+  setClip(m: Motion | null, historyFrames: number, title?: string): void;
   start(): number;
   setStart(f: number): void;
 }
@@ -34,10 +35,11 @@ export function mountHistoryPicker(onChange: () => void): HistoryPicker {
   const note = el('p', { class: 'muted history-note', 'aria-live': 'polite' });
   let motion: Motion | null = null;
   let n = 1;
+  let title = '';
   const update = () => {
     if (!motion) { note.textContent = 'Pick a clip first.'; return; }
     const s = Number(input.value);
-    note.textContent = `History: frames ${s}–${s + n - 1} of ${motion.name} (${(n / motion.fps).toFixed(2)} s, ${splitLabel(motion, s, s + n)}).`;
+    note.textContent = `History: frames ${s}–${s + n - 1} of ${title} (${(n / motion.fps).toFixed(2)} s, ${splitLabel(motion, s, s + n)}).`;
   };
   const clamp = (v: number) => Math.max(0, Math.min(Number(input.max) || 0, Math.round(v)));
   input.addEventListener('change', () => { input.value = String(clamp(Number(input.value))); range.value = input.value; update(); onChange(); });
@@ -48,9 +50,10 @@ export function mountHistoryPicker(onChange: () => void): HistoryPicker {
     el('div', { class: 'range-row' }, range, input), note);
   return {
     root,
-    setClip(m, historyFrames) {
+    setClip(m, historyFrames, readable) {
       const keep = motion?.name === m?.name ? Number(input.value) : null;
       motion = m;
+      title = readable ?? m?.name ?? '';
       n = historyFrames;
       const max = m ? Math.max(0, m.frames - historyFrames) : 0;
       input.max = range.max = String(max);

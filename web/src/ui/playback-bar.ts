@@ -1,15 +1,22 @@
 // Play/pause, frame steps, speed, scrubber and the time read-out, all bound to one Player. With a
 // prediction on stage the scrubber shades the history, marks where it ends (t = 0, the first
-// predicted frame) and each sample's stop (Eq. 8) or cut (out of bounds), and t counts from the
-// first predicted frame.
+// predicted frame), each sample's action changes and its stop (Eq. 8) or cut (out of bounds), or,
+// with a sample selected, every action change and stop of that sample (timeline-marks.ts), and t
+// counts from the first predicted frame.
 import { el } from './dom';
 import { icon } from './icons';
 import type { Player, PlayerState } from './player';
 import { formatTime, SPEEDS } from './timeline';
+import { markFraction, marksFor } from './timeline-marks';
 
 export interface TimelineMark {
   frame: number;
-  kind: 'stop' | 'cut';
+  /** stop: an action (or the sample) stopped at this frame; cut: out of bounds; action: the next action starts. */
+  kind: 'stop' | 'cut' | 'action';
+  /** The action that starts here (kind 'action'). */
+  action?: string;
+  /** Shown only while its sample is selected (a stop inside a sequence). */
+  detail?: boolean;
   /** CSS colour: the sample's identity colour. */
   colour: string;
   /** What the mark is, in words (its tooltip and accessible text). */
@@ -26,6 +33,8 @@ export interface TimelineMarks {
 export interface PlaybackBar {
   /** Marks for what is on stage; null for a clip alone. */
   setTimeline(marks: TimelineMarks | null): void;
+  /** Show only this sample's marks (all of them), or every sample's action changes and ends (null). */
+  select(sample: number | null): void;
   dispose(): void;
 }
 
@@ -52,19 +61,22 @@ export function mountPlaybackBar(container: HTMLElement, player: Player): Playba
   speed.addEventListener('change', () => player.setSpeed(Number(speed.value)));
 
   let timeline: TimelineMarks | null = null;
+  let selected: number | null = null;
   let shown: Partial<PlayerState> = {};
   /** A frame's place along the scrubber, where the range input's thumb centre is at that frame. */
-  const at = (frame: number, length: number) => `calc(var(--thumb-half) + (100% - 2 * var(--thumb-half)) * ${length > 1 ? Math.min(1, frame / (length - 1)) : 0})`;
+  const at = (frame: number, length: number) => `calc(var(--thumb-half) + (100% - 2 * var(--thumb-half)) * ${markFraction(frame, length)})`;
   const drawMarks = (length: number) => {
     if (!timeline || length <= 1) { track.replaceChildren(base); wrap.removeAttribute('data-origin'); return; }
-    const { origin, marks } = timeline;
+    const { origin } = timeline;
+    const marks = marksFor(timeline.marks, selected);
     wrap.dataset.origin = String(origin);
+    if (selected !== null) track.dataset.sample = String(selected); else delete track.dataset.sample;
     track.replaceChildren(base,
       el('span', { class: 'scrubber-history', style: `left: var(--thumb-half); width: calc(${at(origin, length)} - var(--thumb-half))`, title: 'history' }),
       el('span', { class: 'scrubber-now', style: `left: ${at(origin, length)}`, title: 'history ends: t = 0, the first predicted frame', 'data-frame': origin }),
       ...marks.map((m) => el('span', {
         class: `scrubber-mark scrubber-${m.kind}`, style: `left: ${at(m.frame, length)}; --mark-colour: ${m.colour}`,
-        title: m.label, 'data-frame': m.frame, 'data-sample': m.sample,
+        title: m.label, 'data-frame': m.frame, 'data-sample': m.sample, 'data-action': m.action,
       })),
     );
   };
@@ -92,8 +104,14 @@ export function mountPlaybackBar(container: HTMLElement, player: Player): Playba
   return {
     setTimeline(marks) {
       timeline = marks;
+      selected = null; // a new prediction starts with no sample selected
       drawMarks(player.state.length);
       updateTime(player.state);
+    },
+    select(sample) {
+      if (sample === selected) return;
+      selected = sample;
+      drawMarks(player.state.length);
     },
     dispose: unsubscribe,
   };

@@ -8,16 +8,16 @@ import type { Manifest, ModelEntry } from '../contract/types';
 import { window as clipWindow, type Motion } from '../motion/clip';
 import { ModelLoadError, type PredictorClient } from '../predictor/client';
 import { PredictError, Superseded, type Prediction } from '../predictor/types';
-import type { Track } from '../viewer/tracks';
+import { sampleTrackInfo, type Track } from '../viewer/tracks';
 import type { SkeletonView } from '../viewer/viewer';
-import { identityCss } from '../viewer/palette';
 import type { ControlValue } from './controls';
 import type { StatusSink } from './dom';
 import type { MessageBanner } from './messages';
 import { addSection } from './panel';
 import type { TimelineMarks } from './playback-bar';
+import { timelineMarks } from './timeline-marks';
 import type { Player } from './player';
-import { mountPredictionPanel, seconds, type PredictionPanel } from './prediction-panel';
+import { mountPredictionPanel, type PredictionPanel } from './prediction-panel';
 import { mountPredictPanel, type PredictPanel } from './predict-panel';
 import { readoutAfter, readoutJson, type StageReadout } from './readout';
 import { buildRequest } from './request-builder';
@@ -55,6 +55,8 @@ export interface PredictOptions {
   timeline?(marks: TimelineMarks | null): void;
   /** Called with K before a prediction goes on stage (the page picks its layout). */
   beforeShow?(k: number): void;
+  /** A clip's readable name (ui/clip-name.ts) for the texts that name it; default: its name. */
+  clipTitle?(name: string): string;
 }
 
 /** The inputs that make a request, as the share code reads and sets them. */
@@ -91,24 +93,14 @@ export function predictionTracks(m: Motion, start: number, n: number, p: Predict
     tracks.push({
       id: `sample:${i}`, role: 'prediction', positions: p.futures.slice(from, from + len * stride), frames: len, joints: p.joints,
       startFrame: n, sample: i, label: `#${i + 1}`, cut: Boolean(p.samples[i]?.cut),
+      ...sampleTrackInfo(p.samples[i]),
     });
   }
   return tracks;
 }
 
-/** The scrubber's marks: the history's end, and where each sample stopped (Eq. 8) or was cut. */
-export function timelineMarks(n: number, p: Prediction, fps: number): TimelineMarks {
-  const marks: TimelineMarks['marks'] = [];
-  p.samples.forEach((s, i) => {
-    if (!s.cut && !s.stopped) return;
-    const frame = n + Math.max(0, s.length - 1);
-    marks.push({
-      frame, kind: s.cut ? 'cut' : 'stop', colour: identityCss('prediction', i), sample: i,
-      label: s.cut ? `#${i + 1} cut at +${seconds(s.length, fps)} (out of bounds)` : `#${i + 1} stops at +${seconds(s.length, fps)}`,
-    });
-  });
-  return { origin: n, marks };
-}
+/** The scrubber's marks (timeline-marks.ts). */
+export { timelineMarks };
 
 /** "K = 5, actions = walk → run": a model's control values, in the manifest's order. */
 export function describeControls(entry: ModelEntry, values: Record<string, ControlValue>): string {
@@ -158,7 +150,7 @@ export class PredictController {
       body.textContent = 'The manifest lists no models.';
       return;
     }
-    this.results = mountPredictionPanel(out.body, (s) => this.select(s));
+    this.results = mountPredictionPanel(out.body, (s) => this.select(s), { numbersHelp: `${this.o.baseUrl}explainer.html#numbers` });
     this.results.clear();
     this.inputs = mountPredictPanel(body, this.manifest, model, {
       onModel: (entry) => { this.clipChanged(this.o.currentClip(), entry); this.o.onChange?.(); },
@@ -206,7 +198,7 @@ export class PredictController {
   /** Keep the history picker in step with the clip on stage. */
   clipChanged(m: Motion | null, entry: ModelEntry | null = this.inputs?.model() ?? null): void {
     if (!this.inputs || !entry) return;
-    this.inputs.history.setClip(m, entry.params.history_frames);
+    this.inputs.history.setClip(m, entry.params.history_frames, m ? this.o.clipTitle?.(m.name) : undefined);
     if (this.followsClip) this.followAction(m, entry);
   }
 
@@ -348,7 +340,8 @@ export class PredictController {
     const n = entry.params.history_frames;
     const k = s.prediction?.k ?? Number(s.controls.k ?? 1);
     const controls = describeControls(entry, s.controls);
-    return `${entry.label}: ${k} ${k === 1 ? 'future' : 'futures'} from frames ${s.start}–${s.start + n - 1} of ${s.clip}, seed ${s.seed}${controls ? `, ${controls}` : ''}.`;
+    const seeded = entry.controls.some((c) => c.id === 'k'); // a deterministic model's futures do not depend on it
+    return `${entry.label}: ${k} ${k === 1 ? 'future' : 'futures'} from frames ${s.start}–${s.start + n - 1} of ${this.o.clipTitle?.(s.clip) ?? s.clip}${seeded ? `, seed ${s.seed}` : ''}${controls ? `, ${controls}` : ''}.`;
   }
 
   /** The stage no longer shows what the inputs ask for: say so until the new futures are in. */

@@ -1,4 +1,6 @@
 // The predictor's inputs: model, history window, seed, the model's own controls, and Predict.
+// K keeps its value across model switches (clamped to the new model's range), so the first view's
+// K = 5 stays; a deterministic model (no K) disables the seed and says why.
 import type { Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import { mountControls, type ControlsView } from './controls';
@@ -27,19 +29,32 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
   const history = mountHistoryPicker(handlers.onChange);
   // Wide enough for every seed (up to 10 digits).
   const seedInput = el('input', { type: 'number', id: 'seed', class: 'seed-input', min: 0, max: MAX_SEED, step: 1, value: '1' });
-  const dice = el('button', { type: 'button', class: 'text-button', title: 'A new random seed' }, 'New seed');
+  const dice = el('button', { type: 'button', class: 'text-button', id: 'new-seed', title: 'A new random seed' }, 'New seed');
+  const seedNote = el('p', { class: 'muted control-help seed-note', id: 'seed-note', hidden: true });
   const controlsBox = el('div', {});
   const predict = el('button', { type: 'button', class: 'primary-button', id: 'predict' }, 'Predict');
   const progress = el('progress', { class: 'load-progress', max: 1, hidden: true });
   const status = el('p', { class: 'muted predict-status', role: 'status', 'aria-live': 'polite' });
   let controls: ControlsView = mountControls([], manifest.actions, handlers.onChange);
+  /** The last K a model with K had: the next such model starts from it. */
+  let keptK: number | null = null;
 
   const current = () => models.find((m) => m.id === select.value) ?? models[0];
   const showModel = () => {
     const m = current();
+    const before = controls.values().k;
+    if (typeof before === 'number') keptK = before;
     description.textContent = m.description ?? '';
     controls = mountControls(m.controls, manifest.actions, handlers.onChange);
+    const k = m.controls.find((c) => c.id === 'k');
+    if (k && keptK !== null) controls.set('k', Math.max(k.min ?? 1, Math.min(k.max ?? keptK, keptK)));
     controlsBox.replaceChildren(controls.root);
+    // Without K the model draws one future, the same for every seed.
+    const deterministic = !k;
+    seedInput.disabled = dice.disabled = deterministic;
+    seedNote.hidden = !deterministic;
+    seedNote.textContent = deterministic ? `${m.label} is deterministic: every seed gives the same future, so the seed is off.` : '';
+    if (deterministic) seedInput.setAttribute('aria-describedby', 'seed-note'); else seedInput.removeAttribute('aria-describedby');
     handlers.onModel(m);
   };
   select.addEventListener('change', () => { showModel(); handlers.onChange(); });
@@ -54,7 +69,7 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
   container.replaceChildren(
     el('div', { class: 'control-row' }, el('label', { for: 'model-select' }, 'Model'), select, description),
     history.root,
-    el('div', { class: 'control-row' }, el('label', { for: 'seed' }, 'Seed'), el('div', { class: 'range-row' }, seedInput, dice)),
+    el('div', { class: 'control-row seed-row' }, el('label', { for: 'seed' }, 'Seed'), el('div', { class: 'range-row' }, seedInput, dice), seedNote),
     controlsBox,
     el('div', { class: 'predict-row' }, predict, el('span', { class: 'muted' }, 'or press P; any change predicts again')),
     progress, status,

@@ -1,6 +1,6 @@
 // Put a viewer into a container; without WebGL, a notice there instead and an inert view.
 import type { LayoutMode } from './layout';
-import { Viewer, type SkeletonView } from './viewer';
+import { Viewer, type CameraPreset, type SkeletonView } from './viewer';
 import { WebGLUnavailableError } from './webgl';
 
 export interface MountedViewer {
@@ -31,8 +31,15 @@ export function mountViewer(container: HTMLElement): MountedViewer {
 /** Keeps the page's bookkeeping (layout mode) when nothing can be drawn. */
 class InertView implements SkeletonView {
   layout: LayoutMode = 'overlay';
+  camera: CameraPreset = 'auto';
   setTracks(): void {}
   clear(): void {}
+  setCamera(preset: CameraPreset): void { this.camera = preset; }
+  setBestShown(): void {}
+  setTruthShown(): void {}
+  best(): null { return null; }
+  viewDirection(): null { return null; }
+  onTracks(): void {}
   setLayout(mode: LayoutMode): void { this.layout = mode; }
   setFrame(): void {}
   setSelected(): void {}

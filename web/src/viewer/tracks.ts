@@ -16,6 +16,41 @@ export interface Track {
   label?: string;
   /** A sample cut at its last good frame (Prediction.samples[].cut): its label says so. */
   cut?: boolean;
+  /** A prediction's actions in order (track frames), when it runs a sequence: its label names the current one. */
+  segments?: TrackSegment[];
+  /** The sample stopped by its own rule (its last action's stop, Eq. 8) at its last frame: a badge says so. */
+  stopped?: boolean;
+}
+
+export interface TrackSegment { start: number; length: number; action?: string; stopped?: boolean }
+
+/** What a prediction sample's info gives its track: its segments and whether its last one stopped.
+ *  A cut sample did not stop, it was cut (its label says that). */
+export function sampleTrackInfo(s: { stopped: boolean; segments: readonly TrackSegment[]; cut?: unknown; length?: number } | undefined): Pick<Track, 'segments' | 'stopped'> {
+  if (!s) return {};
+  const last = s.segments[s.segments.length - 1];
+  return {
+    segments: s.segments.map((g) => ({ start: g.start, length: g.length, action: g.action, stopped: g.stopped })),
+    stopped: !s.cut && (last?.stopped ?? s.stopped),
+  };
+}
+
+/** What a figure's label adds at timeline position `t`: the action it is doing in a sequence of two or
+ *  more (null otherwise, and before it starts), and "stopped" once its last frame is reached. */
+export function figureStatus(track: Pick<Track, 'startFrame' | 'frames' | 'segments' | 'stopped'>, t: number): { action: string | null; stopped: boolean } {
+  const local = Math.floor(t - track.startFrame + 1e-9);
+  const stopped = Boolean(track.stopped) && track.frames > 0 && local >= track.frames - 1;
+  const segs = track.segments;
+  if (local < 0 || !segs || segs.length < 2) return { action: null, stopped };
+  // no arrays made here: every label asks every frame (K = 50)
+  let named = 0;
+  let action: string | null = null;
+  for (const g of segs) {
+    if (!g.action) continue;
+    named += 1;
+    if (g.start <= local) action = g.action; // the last one begun
+  }
+  return { action: named >= 2 ? action : null, stopped };
 }
 
 /** pending: before the track starts (hidden); playing; ended: holds its last pose. */

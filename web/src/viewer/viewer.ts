@@ -1,17 +1,26 @@
 // The skeleton viewer: tracks on a shared timeline, laid out overlaid or side by side. Figures travel
 // over the floor with their root paths drawn faintly; each figure (each cell, side by side) carries a
 // label in its identity colour; the camera frames every figure after each change of tracks or layout
-// and follows them as they travel.
+// and follows them as they travel. A camera preset (front, side, top, or following one figure) turns
+// that framing; in a sequence each label names the figure's current action, and a badge says when its
+// sample has stopped; a toggle marks the sample closest to the ground truth, another hides the truth.
 import { Box3, Group, Vector3 } from 'three';
 import { CSS2DObject } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
 import type { Skeleton } from '../contract/types';
 import { facingAngle } from '../motion/facing';
 import { SkeletonFigures, type FigureDraw } from './figures';
+import { bestSample, type BestSample } from './best';
 import { layoutTracks, ROW_SPACING, type Layout, type LayoutMode } from './layout';
 import { identityColour, identityCss } from './palette';
 import { RootPaths } from './paths';
 import { Stage, type FramePlan } from './stage';
-import { poseInto, timelineLength, trackPose, type Track } from './tracks';
+import { figureStatus, poseInto, timelineLength, trackPose, type Track } from './tracks';
+
+/** Where the camera looks from: 'auto' is the default framing (three-quarter front, raised side by
+ *  side); 'follow' frames one figure (the selected sample, else the highlighted best, else #1) and
+ *  travels with it. */
+export type CameraPreset = 'auto' | 'front' | 'side' | 'top' | 'follow';
+export const CAMERA_PRESETS: readonly CameraPreset[] = ['auto', 'front', 'side', 'top', 'follow'];
 
 export interface SetTracksOptions {
   /** Keep the camera where it is (by default every new set of tracks is framed). */
@@ -33,6 +42,11 @@ export interface FigureInfo {
   colour: string | null;
   /** Projected bounding box of the figure's joints, CSS pixels from the canvas's top-left. */
   box: { left: number; top: number; right: number; bottom: number };
+  /** The action its label names now (a sequence only), and whether it shows the "stopped" badge. */
+  action: string | null;
+  stopped: boolean;
+  /** It is the highlighted sample closest to the ground truth. */
+  best: boolean;
 }
 
 /** What the page talks to; the UI never needs to know whether WebGL is there. */
@@ -51,6 +65,19 @@ export interface SkeletonView {
   /** The figures drawn now (empty without WebGL). */
   figures(): FigureInfo[];
   resetView(): void;
+  /** Turn the camera to a preset (kept across new tracks until changed). */
+  setCamera(preset: CameraPreset): void;
+  readonly camera: CameraPreset;
+  /** The unit vector from the point looked at to the camera, in the world frame (null without WebGL). */
+  viewDirection(): [number, number, number] | null;
+  /** Highlight the sample closest to the ground truth (kept across new tracks). */
+  setBestShown(on: boolean): void;
+  /** Show or hide the ground truth's figure, label and path (kept across new tracks). */
+  setTruthShown(on: boolean): void;
+  /** The sample closest to the ground truth among the tracks given, or null (no truth, no samples). */
+  best(): BestSample | null;
+  /** Called after every setTracks() and clear(). */
+  onTracks(handler: () => void): void;
   dispose(): void;
 }
 
@@ -58,6 +85,15 @@ export interface SkeletonView {
 // are turned to the figures' heading.
 const OVERLAY_VIEW = new Vector3(0.65, 0.35, 1);
 const SIDE_VIEW = new Vector3(0.25, 0.95, 1);
+/** The presets' directions in the figures' frame (+z their heading, +x their left): front and side a
+ *  little raised so the floor and the paths read; top from just behind, so the heading points up. */
+const PRESET_VIEWS: Record<Exclude<CameraPreset, 'auto' | 'follow'>, Vector3> = {
+  front: new Vector3(0, 0.2, 1),
+  side: new Vector3(1, 0.2, 0),
+  top: new Vector3(0, 1, -0.03),
+};
+/** Following one figure, the camera's path is smoothed less: it keeps up with that figure. */
+const FOLLOW_ONE_SMOOTHING = 5;
 const UP = new Vector3(0, 1, 0);
 /** Room between cells beyond what the figures need (metres), and the smallest cells. */
 const CELL_GAP = 0.35;
@@ -81,6 +117,12 @@ interface LabelSlot {
   /** Placements (indices) whose figure the label sits over, the first visible one wins. */
   placements: number[];
   sample?: number;
+  /** The track the label names (its cell's own track side by side). */
+  track: number;
+  /** The parts after the name: current action, "stopped", "closest to truth" (text as shown). */
+  action: HTMLElement;
+  stopped: HTMLElement;
+  best: HTMLElement;
   /** Height above the head (metres): overlaid figures share a place, so their labels stack. */
   lift: number;
 }
@@ -91,6 +133,14 @@ export class Viewer implements SkeletonView {
   private readonly paths = new RootPaths(PATH_HEIGHT);
   private readonly labelGroup = new Group();
   private tracks: readonly Track[] = [];
+  /** The tracks as given (the ground truth included when hidden), and their pose boxes. */
+  private given: readonly Track[] = [];
+  private givenBoxes: Box3[][] = [];
+  private preset: CameraPreset = 'auto';
+  private bestShown = false;
+  private truthShown = true;
+  private bestOf: BestSample | null = null;
+  private trackListeners: (() => void)[] = [];
   private skeleton: Skeleton | null = null;
   /** Per track, per stored frame: the box of its pose. */
   private frameBoxes: Box3[][] = [];
@@ -126,23 +176,82 @@ export class Viewer implements SkeletonView {
     }
     // K = 50 makes this a heavy call: its first draw waits a frame (make bench's frame gaps)
     this.stage.invalidateAfterNextFrame();
-    this.tracks = tracks;
+    this.given = tracks;
     if (this.skeleton !== skeleton) {
       this.skeleton = skeleton;
       this.figuresMesh.setSkeleton(skeleton);
       this.headJoint = Math.max(0, skeleton.joints.indexOf('head'));
     }
-    this.frameBoxes = tracks.map(poseBoxes);
-    this.followed = tracks.some((tr) => tr.role !== 'history');
+    this.givenBoxes = tracks.map(poseBoxes);
+    try {
+      this.bestOf = bestSample(tracks);
+    } catch {
+      this.bestOf = null; // a track that does not fit the truth: no highlight, the figures still draw
+    }
+    this.shownTracks();
     if (this.selected !== null && !tracks.some((tr) => tr.sample === this.selected)) this.selected = null;
     this.arrange(!options.keepView);
+    for (const l of this.trackListeners) l();
   }
 
   clear(): void {
-    this.tracks = [];
-    this.frameBoxes = [];
-    this.followed = false;
+    this.given = [];
+    this.givenBoxes = [];
+    this.bestOf = null;
+    this.shownTracks();
     this.arrange(false);
+    for (const l of this.trackListeners) l();
+  }
+
+  get camera(): CameraPreset { return this.preset; }
+
+  setCamera(preset: CameraPreset): void {
+    if (!CAMERA_PRESETS.includes(preset)) throw new Error(`unknown camera preset '${preset}' (${CAMERA_PRESETS.join(', ')})`);
+    this.preset = preset;
+    this.refit();
+  }
+
+  setBestShown(on: boolean): void {
+    if (on === this.bestShown) return;
+    this.bestShown = on;
+    if (this.preset === 'follow') this.refit();
+    this.redraw();
+  }
+
+  setTruthShown(on: boolean): void {
+    if (on === this.truthShown) return;
+    this.truthShown = on;
+    this.shownTracks();
+    // side by side the truth has a cell of its own: the grid changes, so it is framed again
+    this.arrange(this.mode === 'side' || this.preset === 'follow');
+  }
+
+  best(): BestSample | null { return this.bestOf; }
+
+  viewDirection(): [number, number, number] | null {
+    const d = this.stage.camera.position.clone().sub(this.stage.controls.target).normalize();
+    return [d.x, d.y, d.z];
+  }
+
+  onTracks(handler: () => void): void { this.trackListeners.push(handler); }
+
+  /** The tracks drawn: those given, less the ground truth when it is hidden. */
+  private shownTracks(): void {
+    const keep = this.given.map((tr) => this.truthShown || tr.role !== 'truth');
+    this.tracks = this.given.filter((_, i) => keep[i]);
+    this.frameBoxes = this.givenBoxes.filter((_, i) => keep[i]);
+    this.followed = this.tracks.some((tr) => tr.role !== 'history');
+  }
+
+  /** The sample the eye is led to: the selected one, else the highlighted best. */
+  private focus(): number | null {
+    if (this.selected !== null) return this.selected;
+    return this.bestShown && this.bestOf ? this.bestOf.sample : null;
+  }
+
+  /** Frame the figures again from the current preset (after a preset or a followed figure changes). */
+  private refit(): void {
+    this.stage.fit(this.plan(this.heading()), this.t);
   }
 
   setLayout(mode: LayoutMode): void {
@@ -159,6 +268,7 @@ export class Viewer implements SkeletonView {
 
   setSelected(sample: number | null): void {
     this.selected = sample;
+    if (this.preset === 'follow') this.refit();
     this.redraw();
   }
 
@@ -191,9 +301,12 @@ export class Viewer implements SkeletonView {
         box.top = Math.min(box.top, y); box.bottom = Math.max(box.bottom, y);
       }
       const slot = this.labels.find((l) => l.placements.includes(pi));
+      const status = figureStatus(this.tracks[slot?.track ?? p.track], this.t);
       return {
         track: track.id, role: track.role, sample: track.sample, cell: p.cell, shared: p.shared,
         label: slot?.element.textContent ?? '', colour: this.figuresMesh.identityHex(i), box,
+        action: status.action, stopped: status.stopped,
+        best: this.bestShown && track.role === 'prediction' && this.bestOf?.sample === track.sample,
       };
     });
   }
@@ -277,12 +390,13 @@ export class Viewer implements SkeletonView {
     const boxes: Box3[] = [];
     const corners: Float32Array[] = [];
     const placements = this.arrangement.placements;
+    const only = this.preset === 'follow' ? this.followedPlacements() : null;
     for (let f = 0; f < length; f++) {
       // plain numbers, not a Box3 per figure and frame: K = 50 runs this for 52 figures x 150 frames
       let x0 = Infinity; let y0 = Infinity; let z0 = Infinity; let x1 = -Infinity; let y1 = -Infinity; let z1 = -Infinity;
       const shown: number[] = [];
       for (let pi = 0; pi < placements.length; pi++) {
-        if (!this.visible(pi, f)) continue;
+        if (!this.visible(pi, f) || (only && !only.has(pi))) continue;
         const p = placements[pi];
         const b = this.frameBoxes[p.track][trackPose(this.tracks[p.track], f).a];
         x0 = Math.min(x0, b.min.x + p.x); y0 = Math.min(y0, b.min.y); z0 = Math.min(z0, b.min.z + p.z);
@@ -313,16 +427,38 @@ export class Viewer implements SkeletonView {
     }
     if (boxes.every((b) => b.isEmpty())) boxes[0] = new Box3(new Vector3(-0.5, 0, -0.5), new Vector3(0.5, 1.8, 0.5));
     const raw = boxes.map((b) => (b.isEmpty() ? null : b.getCenter(new Vector3())));
+    const smoothing = only ? FOLLOW_ONE_SMOOTHING : FOLLOW_SMOOTHING;
     const centres = raw.map((_, f) => {
       const sum = new Vector3();
       let n = 0;
-      for (let g = Math.max(0, f - FOLLOW_SMOOTHING); g <= Math.min(raw.length - 1, f + FOLLOW_SMOOTHING); g++) {
+      for (let g = Math.max(0, f - smoothing); g <= Math.min(raw.length - 1, f + smoothing); g++) {
         if (raw[g]) { sum.add(raw[g]!); n++; }
       }
       return n ? sum.divideScalar(n) : new Vector3(0, 0.9, 0);
     });
-    const direction = (this.mode === 'side' && this.arrangement.cells > 1 ? SIDE_VIEW : OVERLAY_VIEW).clone().applyAxisAngle(UP, heading);
+    const view = this.preset === 'auto' ? (this.mode === 'side' && this.arrangement.cells > 1 && !only ? SIDE_VIEW : OVERLAY_VIEW)
+      : this.preset === 'follow' ? OVERLAY_VIEW : PRESET_VIEWS[this.preset];
+    const direction = view.clone().applyAxisAngle(UP, heading);
     return { direction, boxes, centres, corners };
+  }
+
+  /** The placements the 'follow' preset frames: the followed sample's figure (the selected one, else
+   *  the highlighted best, else the first), with the history it continues in its cell; null (frame
+   *  every figure) when there is no sample. */
+  private followedPlacements(): Set<number> | null {
+    const samples = this.tracks.filter((tr) => tr.role === 'prediction' && tr.sample !== undefined).map((tr) => tr.sample!);
+    if (!samples.length) return null;
+    const want = this.focus();
+    const sample = want !== null && samples.includes(want) ? want : Math.min(...samples);
+    const placements = this.arrangement.placements;
+    const own = placements.findIndex((p) => !p.shared && this.tracks[p.track].sample === sample && this.tracks[p.track].role === 'prediction');
+    if (own < 0) return null;
+    const cell = placements[own].cell;
+    const out = new Set([own]);
+    placements.forEach((p, pi) => {
+      if (this.tracks[p.track].role === 'history' && p.cell === cell) out.add(pi);
+    });
+    return out;
   }
 
   private clearLabels(): void {
@@ -359,7 +495,12 @@ export class Viewer implements SkeletonView {
       const track = this.tracks[owner.track];
       const element = document.createElement('div');
       element.className = `figure-label figure-label-${track.role}`;
-      element.textContent = labelText(track);
+      // the name, then what changes with time (each part starts " · " so the text reads as one line)
+      const part = (cls: string) => { const e = document.createElement('span'); e.className = cls; e.hidden = true; return e; };
+      const action = part('figure-action');
+      const stopped = part('figure-badge figure-stopped');
+      const best = part('figure-badge figure-best');
+      element.append(labelText(track), action, stopped, best);
       element.style.setProperty('--figure-colour', identityCss(track.role, track.sample ?? 0));
       if (track.sample !== undefined) {
         element.dataset.sample = String(track.sample);
@@ -374,7 +515,7 @@ export class Viewer implements SkeletonView {
       // futures, shares the first step with the ground truth).
       const lift = LABEL_LIFT + (this.mode === 'overlay' || this.arrangement.cells <= 1 ? LABEL_STEP * rank : 0);
       if (track.role !== 'history') rank += 1;
-      this.labels.push({ object, element, placements, sample: track.sample, lift });
+      this.labels.push({ object, element, placements, sample: track.sample, lift, track: owner.track, action, stopped, best });
     }
   }
 
@@ -389,22 +530,27 @@ export class Viewer implements SkeletonView {
       const draw = this.draws[i];
       poseInto(track, pose, draw.pose);
       const isPrediction = track.role === 'prediction';
-      const selected = isPrediction && this.selected !== null && track.sample === this.selected;
+      const focus = this.focus();
+      const selected = isPrediction && focus !== null && track.sample === focus;
       draw.tint = {
         role: track.role, sample: track.sample, selected,
-        muted: isPrediction && this.selected !== null && !selected, ended: pose.state === 'ended',
+        muted: isPrediction && focus !== null && !selected, ended: pose.state === 'ended',
       };
       visible.push(draw);
       this.drawn.push(i);
       shown.add(i);
     });
     this.figuresMesh.draw(visible);
+    const focus = this.focus();
+    const best = this.bestShown ? this.bestOf?.sample ?? null : null;
     for (const l of this.labels) {
       const pi = l.placements.find((i) => shown.has(i));
       l.object.visible = pi !== undefined;
       l.element.classList.toggle('figure-label-selected', this.selected !== null && l.sample === this.selected);
-      l.element.classList.toggle('figure-label-muted', this.selected !== null && l.sample !== undefined && l.sample !== this.selected);
+      l.element.classList.toggle('figure-label-muted', focus !== null && l.sample !== undefined && l.sample !== focus);
+      l.element.classList.toggle('figure-label-best', best !== null && l.sample === best);
       if (pi === undefined) continue;
+      this.labelStatus(l, best);
       const p = this.arrangement.placements[pi];
       const pose = this.draws[pi].pose;
       const j = this.headJoint * 3;
@@ -415,6 +561,30 @@ export class Viewer implements SkeletonView {
       return this.selected === null || role !== 'prediction' ? 0.5 : sample === this.selected ? 0.9 : 0.15;
     });
     this.stage.invalidate();
+  }
+
+  /** A label's action and badges at the current frame; the DOM is touched only when they change
+   *  (labels are redrawn every frame). */
+  private labelStatus(l: LabelSlot, best: number | null): void {
+    const track = this.tracks[l.track];
+    if (!track || track.role !== 'prediction') return;
+    const { action, stopped } = figureStatus(track, this.t);
+    const isBest = best !== null && l.sample === best;
+    // a hidden part has no text either: the label's text is what it shows (FigureInfo.label); a badge
+    // is a pill after its " · "
+    const set = (e: HTMLElement, text: string, pill: boolean) => {
+      if (e.textContent === (text ? ` · ${text}` : '')) return;
+      if (!text) e.replaceChildren();
+      else if (pill) { const b = document.createElement('b'); b.textContent = text; e.replaceChildren(' · ', b); }
+      else e.textContent = ` · ${text}`;
+      e.hidden = text === '';
+    };
+    set(l.action, action ? action.replace(/_/g, ' ') : '', false);
+    set(l.stopped, stopped ? 'stopped' : '', true);
+    set(l.best, isBest ? 'closest to truth' : '', true);
+    if ((l.element.dataset.action ?? null) !== action) {
+      if (action) l.element.dataset.action = action; else delete l.element.dataset.action;
+    }
   }
 
   /** A click (not a drag) on the canvas picks the figure under it: the smallest box that holds the point. */

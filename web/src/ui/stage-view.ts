@@ -1,0 +1,95 @@
+// "Seeing what matters", over the stage's bottom-right corner: the camera presets (front, side, top,
+// follow one figure), a toggle that highlights the sample closest to the ground truth (with its
+// per-joint error), and one that hides the ground truth. It also carries the styles of what the
+// viewer adds to each figure's label (the current action, the "stopped" and "closest" badges), so the
+// parts of this feature live together. Placed absolutely: nothing here moves or resizes the stage.
+import { CAMERA_PRESETS, type CameraPreset, type SkeletonView } from '../viewer/viewer';
+import { el } from './dom';
+
+export interface StageView {
+  root: HTMLElement;
+  /** Re-read the view (best sample, whether there is a truth); the view calls it after new tracks. */
+  refresh(): void;
+}
+
+const PRESET_LABELS: Record<CameraPreset, string> = {
+  auto: 'Camera: fit all', front: 'Camera: front', side: 'Camera: side', top: 'Camera: top', follow: 'Camera: follow one',
+};
+
+/** Stage width (CSS px) below which the bar uses its short labels. */
+const COMPACT_BELOW = 560;
+
+const CSS = `
+.stage-view { position: absolute; right: 0.5rem; bottom: 0.5rem; z-index: 2; display: flex; gap: 0.3rem; align-items: center;
+  flex-wrap: wrap; justify-content: flex-end; max-width: calc(100% - 1rem); font: 500 0.8rem/1.2 system-ui, sans-serif; }
+.stage-view select, .stage-view button { font: inherit; color: var(--fg); background: color-mix(in srgb, var(--panel-bg) 88%, transparent);
+  border: 1px solid var(--border); border-radius: 6px; padding: 0.25rem 0.45rem; cursor: pointer; min-height: 1.9rem; }
+.stage-view button[aria-pressed='true'] { border-color: var(--accent); box-shadow: inset 0 0 0 1px var(--accent); font-weight: 650; }
+.stage-view button:disabled { cursor: default; }
+.figure-action { font-weight: 500; }
+.figure-badge b { font-weight: 700; padding: 0 0.3rem; border-radius: 3px; }
+.figure-stopped b { background: var(--fg); color: var(--panel-bg); }
+.figure-best b { box-shadow: inset 0 0 0 2px var(--figure-colour); }
+/* on the scrubber: where the next action starts, above the track; stops and cuts stay below it */
+.scrubber-action { top: 0; bottom: auto; height: 40%; width: 2px; margin-left: -1px; }
+.figure-label-best { box-shadow: 0 0 0 2px var(--figure-colour), 0 0 0 4px color-mix(in srgb, var(--figure-colour) 35%, transparent); }
+`;
+
+let sheet: CSSStyleSheet | null = null;
+
+/** Adopt this feature's styles into the document or shadow root that holds `node` (once per root). */
+function adoptStyles(node: Node): void {
+  const root = node.getRootNode() as Document | ShadowRoot;
+  if (!('adoptedStyleSheets' in root) || typeof CSSStyleSheet === 'undefined') return;
+  try {
+    if (!sheet) { sheet = new CSSStyleSheet(); sheet.replaceSync(CSS); }
+    if (!root.adoptedStyleSheets.includes(sheet)) root.adoptedStyleSheets = [...root.adoptedStyleSheets, sheet];
+  } catch {
+    // a browser without constructable sheets still works, unstyled
+  }
+}
+
+export function mountStageView(viewer: HTMLElement, view: SkeletonView): StageView {
+  const camera = el('select', { class: 'camera-preset', 'aria-label': 'Camera', 'data-testid': 'camera-preset',
+    title: 'Where the camera looks from; "follow one" travels with the selected sample (else the closest, else #1)' },
+  ...CAMERA_PRESETS.map((p) => el('option', { value: p }, PRESET_LABELS[p])));
+  camera.value = view.camera;
+  const best = el('button', { type: 'button', class: 'best-toggle', 'aria-pressed': 'false', 'data-testid': 'best-toggle' });
+  const truth = el('button', { type: 'button', class: 'truth-toggle', 'aria-pressed': 'true', 'data-testid': 'truth-toggle',
+    title: 'Show or hide the ground truth (what the clip really does next)' }, 'Ground truth');
+  const root = el('div', { class: 'stage-view', role: 'group', 'aria-label': 'What to see', 'data-testid': 'stage-view' }, camera, best, truth);
+  viewer.append(root);
+  adoptStyles(root);
+
+  let bestOn = false;
+  let truthOn = true;
+  /** A narrow stage (a phone, a small embed) gets the short labels, so the bar keeps to one line. */
+  let compact = false;
+  const refresh = () => {
+    const b = view.best();
+    best.disabled = !b;
+    best.setAttribute('aria-pressed', String(bestOn && Boolean(b)));
+    best.textContent = bestOn && b ? `${compact ? 'Closest' : 'Closest to truth'}: #${b.sample + 1} · ${b.cm.toFixed(1)} cm` : compact ? 'Closest' : 'Closest to truth';
+    best.title = b
+      ? `Highlight the sample closest to the ground truth: the smallest mean per-joint distance to it (world frame), over the ${b.frames} frames of ground truth that follow the history`
+      : 'Needs futures and the ground truth that follows the history';
+    if (b) best.dataset.sample = String(b.sample); else delete best.dataset.sample;
+    // there is a ground truth to hide only with futures and a clip that goes on (best() needs both)
+    truth.disabled = truthOn && !b;
+    truth.setAttribute('aria-pressed', String(truthOn));
+    truth.textContent = compact ? (truthOn ? 'Truth: shown' : 'Truth: hidden') : truthOn ? 'Ground truth: shown' : 'Ground truth: hidden';
+    for (const o of camera.options) o.textContent = compact ? PRESET_LABELS[o.value as CameraPreset].replace('Camera: ', '') : PRESET_LABELS[o.value as CameraPreset];
+  };
+  if (typeof ResizeObserver !== 'undefined') {
+    new ResizeObserver(() => {
+      const narrow = viewer.clientWidth > 0 && viewer.clientWidth < COMPACT_BELOW;
+      if (narrow !== compact) { compact = narrow; refresh(); }
+    }).observe(viewer);
+  }
+  camera.addEventListener('change', () => view.setCamera(camera.value as CameraPreset));
+  best.addEventListener('click', () => { bestOn = !bestOn; view.setBestShown(bestOn); refresh(); });
+  truth.addEventListener('click', () => { truthOn = !truthOn; view.setTruthShown(truthOn); refresh(); });
+  view.onTracks(refresh);
+  refresh();
+  return { root, refresh };
+}
