@@ -1,11 +1,12 @@
 // The widget on someone else's page: one script include, two <motion-futures> tags with
 // different models, on a host page elsewhere on the origin. Both render and predict, they share
 // one worker and one copy of each model, and keys act on the focused one. Plus embed.html in an iframe.
-import { readFileSync } from 'node:fs';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page, Request } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
-import { defaultHistory, index } from './data';
+import { defaultHistory, index, stageModel } from './data';
+import { projectPage } from './host-pages';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
@@ -62,7 +63,11 @@ describe('two widgets on a host page', () => {
     // minimal controls: no side panel, the one-line bar instead; full controls: the panel
     expect(await page.locator('#a #panel').isVisible()).toBe(false);
     expect(await page.locator('#a .mini-bar').isVisible()).toBe(true);
+    // b is narrower than 760 px: its panel opens from the "Controls" button, over the stage
+    expect(await page.locator('#b #panel').isVisible()).toBe(false);
+    await page.locator('#b .panel-toggle').click();
     expect(await page.locator('#b #panel').isVisible()).toBe(true);
+    await page.locator('#b .panel-toggle').click();
     expect(await page.locator('#b .mini-bar').isVisible()).toBe(false);
     // the host page's styles stay out: the widget's buttons are not pink
     const bg = await page.locator('#a .mini-bar button').evaluate((b) => getComputedStyle(b).backgroundColor);
@@ -158,6 +163,296 @@ describe('embed.html in an iframe', () => {
       expect(await frame.locator('#panel').isVisible()).toBe(false); // minimal by default
       await expect.poll(() => frame.getByTestId('play').getAttribute('aria-label')).toBe('Pause'); // autoplay=1
       await session.screenshot('embed-iframe.png');
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
+// A good citizen of someone else's page (issue 29 item 6): on a project page with a CSS reset, a
+// Bulma-like stylesheet and html { font-size: 62.5% }, under a dark system preference. One page load
+// carries the desktop checks, a second the phone's.
+const STOCHASTIC = stageModel.id;
+const IFRAME_SRC = `${baseUrl}embed.html?model=${STOCHASTIC}&clip=${CLIP_B}&k=5&seed=3&controls=full`;
+/** The README's responsive iframe snippet (README "Embedding"). */
+const RESPONSIVE = 'width: 100%; max-width: 720px; aspect-ratio: 3 / 2; min-height: 400px; border: 0';
+const PROJECT = projectPage({
+  teaser: `<script type="module" src="${baseUrl}assets/motion-futures.js"></script>
+  <motion-futures id="w" model="${STOCHASTIC}" clip="${CLIP_B}" k="5" seed="3" theme="light" autoplay
+    style="display: block; height: 480px; max-width: 720px; margin: 0 auto 24px"></motion-futures>
+  <iframe id="fr" src="${IFRAME_SRC}" title="motion-futures" style="${RESPONSIVE}; display: block; margin: 0 auto"></iframe>`,
+  results: `<motion-futures id="n" model="${STOCHASTIC}" clip="${CLIP_B}" k="5" seed="4" style="height: 360px"></motion-futures>`,
+});
+const SHOTS = '/tmp/h29c';
+
+type Widget = HTMLElement & { app: import('../../web/src/ui/app').App };
+/** Count WebGL draws per canvas, in every frame (drawn frames are what a paused render loop saves). */
+const COUNT_DRAWS = () => {
+  for (const proto of [WebGL2RenderingContext.prototype, WebGLRenderingContext.prototype]) {
+    for (const name of ['drawElements', 'drawArrays', 'drawElementsInstanced', 'drawArraysInstanced'] as const) {
+      const original = (proto as unknown as Record<string, (...a: unknown[]) => unknown>)[name];
+      if (!original) continue;
+      (proto as unknown as Record<string, unknown>)[name] = function (this: WebGL2RenderingContext, ...a: unknown[]) {
+        const c = this.canvas as HTMLCanvasElement & { draws?: number };
+        c.draws = (c.draws ?? 0) + 1;
+        return original.apply(this, a);
+      };
+    }
+  }
+};
+const draws = (page: Page, id: string) => page.evaluate((i) => (document.getElementById(i)!.shadowRoot!.querySelector('canvas') as HTMLCanvasElement & { draws?: number }).draws ?? 0, id);
+const figureHeight = (page: Page, id: string) => page.evaluate((i) => {
+  const figs = (document.getElementById(i) as Widget).app.view.figures();
+  return figs.reduce((s, f) => s + (f.box.bottom - f.box.top), 0);
+}, id);
+const viewDirection = (page: Page, id: string) => page.evaluate((i) => (document.getElementById(i) as Widget).app.view.viewDirection(), id);
+
+/** In a document with a widget: its controls that cannot be reached (outside the visible widget, or
+ *  covered), after scrolling each into view inside its own scroll box; and how many were checked. */
+const UNREACHABLE = ([sel, within]: [string, string]) => {
+  const host = document.querySelector(sel) as HTMLElement;
+  const root = host.shadowRoot!;
+  const box = host.getBoundingClientRect();
+  const vw = document.documentElement.clientWidth;
+  const vh = document.documentElement.clientHeight;
+  const bad: string[] = [];
+  let checked = 0;
+  for (const c of root.querySelector(within)!.querySelectorAll<HTMLElement>('button, input, select, textarea, summary, a[href], [tabindex="0"]')) {
+    if (!c.checkVisibility({ visibilityProperty: true })) continue; // not shown (a closed section)
+    c.scrollIntoView({ block: 'nearest', inline: 'nearest' });
+    const r = c.getBoundingClientRect();
+    const x = r.left + r.width / 2;
+    const y = r.top + Math.min(r.height / 2, 8);
+    const name = `${c.tagName.toLowerCase()}${c.id ? `#${c.id}` : ''}[${c.getAttribute('aria-label') ?? c.textContent?.trim().slice(0, 24)}]`;
+    checked += 1;
+    if (r.width < 4 || r.height < 4) { bad.push(`${name}: ${r.width}x${r.height}`); continue; }
+    if (x < Math.max(0, box.left) || x > Math.min(vw, box.right) || y < Math.max(0, box.top) || y > Math.min(vh, box.bottom)) { bad.push(`${name}: outside`); continue; }
+    const hit = root.elementFromPoint(x, y);
+    const label = c.closest('label');
+    if (!hit || !(c.contains(hit) || hit.contains(c) || (label && label.contains(hit)) || (c as HTMLInputElement).labels?.[0]?.contains(hit))) bad.push(`${name}: covered by ${hit?.tagName}.${hit?.className}`);
+  }
+  const widget = root.querySelector('.mf-widget') as HTMLElement;
+  if (widget.scrollHeight > widget.clientHeight + 1) bad.push(`the widget scrolls: ${widget.scrollHeight} in ${widget.clientHeight}`);
+  return { bad, checked };
+};
+
+/** Every control of a narrow full embed: the stage's with the panel closed, then the panel's, open. */
+async function reachable(frame: import('playwright-core').Frame): Promise<void> {
+  const stage = await frame.evaluate(UNREACHABLE, ['motion-futures', '.stage-area'] as [string, string]);
+  expect(stage.bad).toEqual([]);
+  expect(stage.checked, 'the stage\'s controls (playback, camera, layout, Controls)').toBeGreaterThanOrEqual(8);
+  await frame.locator('.panel-toggle').click();
+  const panel = await frame.evaluate(UNREACHABLE, ['motion-futures', '#panel'] as [string, string]);
+  expect(panel.bad).toEqual([]);
+  expect(panel.checked, 'the panel\'s controls').toBeGreaterThan(15);
+}
+
+/** Tab through a document; every stop must be a visible box of at least 4 x 4 px. */
+async function invisibleTabStops(page: Page, presses: number): Promise<string[]> {
+  const bad: string[] = [];
+  await page.evaluate(() => (document.activeElement as HTMLElement | null)?.blur());
+  for (let i = 0; i < presses; i++) {
+    await page.keyboard.press('Tab');
+    const stop = await page.evaluate(() => {
+      let a: Element | null = document.activeElement;
+      while (a?.shadowRoot?.activeElement) a = a.shadowRoot.activeElement;
+      if (!a || a === document.body || a.tagName === 'IFRAME') return null;
+      const r = a.getBoundingClientRect();
+      const ok = r.width >= 4 && r.height >= 4 && a.checkVisibility({ opacityProperty: true, visibilityProperty: true });
+      return ok ? null : `${a.tagName.toLowerCase()}.${a.className} ${r.width}x${r.height}`;
+    });
+    if (stop) bad.push(stop);
+  }
+  return bad;
+}
+
+describe('the embed on a project page', () => {
+  let session: BrowserSession;
+  let page: Page;
+  const swRequests: string[] = [];
+
+  beforeAll(async () => {
+    mkdirSync(SHOTS, { recursive: true });
+    session = await openBrowser({ viewport: { width: 1280, height: 800 }, colorScheme: 'dark' });
+    page = session.page;
+    session.context.on('request', (r: Request) => { if (/\/sw\.js$|workbox/.test(r.url())) swRequests.push(r.url()); });
+    await session.context.addInitScript(COUNT_DRAWS);
+    await page.route(HOST_URL, (route) => route.fulfill({ status: 200, contentType: 'text/html', body: PROJECT }));
+    await page.goto(HOST_URL);
+    await Promise.all([done(page, 'w'), done(page, 'n'),
+      page.frameLocator('#fr').locator('motion-futures[data-predict-status="done"]').waitFor({ state: 'attached', timeout: 120_000 })]);
+  });
+  afterAll(async () => { await session?.close(); });
+
+  it('fills its element with display: block, keeps its own sizes and theme, and shows a stochastic K = 5', async () => {
+    const w = page.locator('#w');
+    expect(await w.getAttribute('data-prediction-k')).toBe('5');
+    const host = (await w.boundingBox())!;
+    const area = (await page.locator('#w .stage-area').boundingBox())!;
+    const viewer = (await page.locator('#w #viewer').boundingBox())!;
+    expect(host.height).toBe(480);
+    expect(area.height / host.height, 'the stage with its playback, of the element').toBeGreaterThanOrEqual(0.9);
+    expect(viewer.height / host.height, 'the 3D view, of the element').toBeGreaterThanOrEqual(0.75);
+    expect(viewer.width / host.width).toBeGreaterThanOrEqual(0.95);
+    // html { font-size: 62.5% } (1rem = 10 px on the host page) does not shrink the widget
+    const sizes = await page.evaluate(() => {
+      const root = document.getElementById('w')!.shadowRoot!;
+      const px = (s: string, p: 'fontSize' | 'height') => parseFloat(getComputedStyle(root.querySelector(s)!)[p]);
+      return { bar: px('.mini-bar', 'fontSize'), button: px('.icon-button', 'height'), stageBar: px('.stage-view', 'fontSize'),
+        hostRem: parseFloat(getComputedStyle(document.documentElement).fontSize) };
+    });
+    expect(sizes.stageBar, 'the camera bar over the stage').toBeGreaterThanOrEqual(11);
+    expect(sizes.hostRem).toBe(10);
+    expect(sizes.bar).toBeGreaterThanOrEqual(12);
+    expect(sizes.button).toBeGreaterThanOrEqual(30);
+    // theme="light" under a dark system preference; the iframe without a theme follows the system
+    const bg = (loc: Page | import('playwright-core').FrameLocator) => loc.locator('motion-futures').first().evaluate((h) => getComputedStyle(h).backgroundColor);
+    expect(await page.locator('#w').evaluate((h) => getComputedStyle(h).backgroundColor)).toBe('rgb(246, 247, 249)');
+    expect(await bg(page.frameLocator('#fr'))).toBe('rgb(21, 25, 30)');
+    // the 3D stage reads its colours from the widget's (stage.ts readTheme)
+    expect(await page.locator('#w #viewer').evaluate((v) => getComputedStyle(v).getPropertyValue('--stage-bg').trim())).toBe('#eef0f3');
+  });
+
+  it('registers no service worker and precaches nothing, in the element or the iframe', async () => {
+    await page.waitForTimeout(500); // a registration would follow the first prediction at once
+    expect(await page.evaluate(() => navigator.serviceWorker.getRegistrations().then((r) => r.length))).toBe(0);
+    const frame = page.frame({ url: /embed\.html/ })!;
+    expect(await frame.evaluate(() => navigator.serviceWorker.getRegistrations().then((r) => r.length))).toBe(0);
+    expect(await frame.evaluate(() => caches.keys())).toEqual([]);
+    expect(swRequests).toEqual([]);
+    expect(await page.frameLocator('#fr').locator('text=/offline/i').count()).toBe(0);
+  });
+
+  it('lets the page scroll under the wheel; ctrl + wheel, or a click first, zooms', async () => {
+    await page.evaluate(() => { const p = (document.getElementById('w') as Widget).app.player; p.pause(); p.seek(20); });
+    await page.evaluate(() => window.scrollTo(0, 200));
+    const v = (await page.locator('#w #viewer').boundingBox())!;
+    await page.mouse.move(v.x + v.width / 2, v.y + v.height / 2);
+    const size0 = await figureHeight(page, 'w');
+    const y0 = await page.evaluate(() => window.scrollY);
+    for (let i = 0; i < 5; i++) { await page.mouse.wheel(0, 100); await page.waitForTimeout(60); }
+    await expect.poll(() => page.evaluate(() => window.scrollY)).toBeGreaterThan(y0 + 300);
+    expect(await page.locator('#w .gesture-hint').textContent()).toMatch(/Ctrl \+ scroll to zoom/);
+    expect(await figureHeight(page, 'w'), 'the wheel did not zoom').toBeCloseTo(size0, 0);
+
+    await page.evaluate(() => window.scrollTo(0, 200));
+    await settle(page);
+    const y1 = await page.evaluate(() => window.scrollY);
+    await page.keyboard.down('Control');
+    for (let i = 0; i < 3; i++) { await page.mouse.wheel(0, -100); await page.waitForTimeout(60); }
+    await page.keyboard.up('Control');
+    await settle(page);
+    expect(await page.evaluate(() => window.scrollY)).toBe(y1);
+    const size1 = await figureHeight(page, 'w');
+    expect(size1, 'ctrl + wheel zooms in').toBeGreaterThan(size0 * 1.1);
+
+    // a click into the widget: the wheel zooms (out) there until focus leaves
+    await page.mouse.click(v.x + 20, v.y + 20);
+    expect(await page.evaluate(() => document.activeElement?.id)).toBe('w');
+    for (let i = 0; i < 3; i++) { await page.mouse.wheel(0, 100); await page.waitForTimeout(60); }
+    await settle(page);
+    expect(await page.evaluate(() => window.scrollY)).toBe(y1);
+    expect(await figureHeight(page, 'w'), 'a focused widget zooms out under the wheel').toBeLessThan(size1 * 0.9);
+    await page.evaluate(() => (document.activeElement as HTMLElement | null)?.blur());
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('stops drawing while scrolled out of view, and plays on when back', async () => {
+    await page.evaluate(() => { window.scrollTo(0, 150); (document.getElementById('w') as Widget).app.player.play(); });
+    await expect.poll(() => playLabel(page, 'w')).toBe('Pause');
+    const a = await draws(page, 'w');
+    await page.waitForTimeout(600);
+    const shown = (await draws(page, 'w')) - a;
+    expect(shown, 'frames drawn in 0.6 s on screen').toBeGreaterThan(5);
+    await page.evaluate(() => window.scrollTo(0, document.documentElement.scrollHeight));
+    await page.waitForTimeout(300); // the intersection observer reports
+    const b = await draws(page, 'w');
+    await page.waitForTimeout(800);
+    expect((await draws(page, 'w')) - b, 'frames drawn in 0.8 s off screen').toBe(0);
+    await page.evaluate(() => window.scrollTo(0, 150));
+    await expect.poll(() => playLabel(page, 'w')).toBe('Pause');
+    const c = await draws(page, 'w');
+    await expect.poll(() => draws(page, 'w').then((d) => d - c)).toBeGreaterThan(3);
+  });
+
+  it('fits a 320 px column: the playback bar wraps without overlap; full controls all reachable in 720 x 480', async () => {
+    const n = page.locator('#n');
+    await n.scrollIntoViewIfNeeded();
+    expect((await n.boundingBox())!.width).toBe(320);
+    const bar = await page.evaluate(() => {
+      const root = document.getElementById('n')!.shadowRoot!;
+      const host = document.getElementById('n')!.getBoundingClientRect();
+      const parts = [...root.querySelector('.playback-bar')!.children].map((c) => ({ r: c.getBoundingClientRect(), cls: c.className, clipped: c.scrollWidth > c.clientWidth + 1 }));
+      const overlaps: string[] = [];
+      for (const [i, p] of parts.entries()) for (const q of parts.slice(i + 1)) {
+        if (p.r.left < q.r.right - 1 && q.r.left < p.r.right - 1 && p.r.top < q.r.bottom - 1 && q.r.top < p.r.bottom - 1) overlaps.push(`${p.cls} / ${q.cls}`);
+      }
+      return { overlaps, outside: parts.filter((p) => p.r.left < host.left || p.r.right > host.right).map((p) => p.cls),
+        clipped: parts.filter((p) => p.clipped).map((p) => p.cls), readout: parts.find((p) => p.cls.includes('time-readout'))!.r.width };
+    });
+    expect(bar).toEqual({ overlaps: [], outside: [], clipped: [], readout: bar.readout });
+    expect(bar.readout).toBeGreaterThan(80);
+
+    const frame = page.frame({ url: /embed\.html/ })!;
+    await page.locator('#fr').scrollIntoViewIfNeeded();
+    expect(await page.locator('#fr').boundingBox()).toMatchObject({ width: 720, height: 480 });
+    await reachable(frame);
+    await frame.locator('.panel-toggle').click();
+    expect(await frame.locator('#panel').isVisible()).toBe(false);
+  });
+
+  it('has no invisible tab stops', async () => {
+    await page.evaluate(() => window.scrollTo(0, 0));
+    expect(await invisibleTabStops(page, 45)).toEqual([]);
+    await page.evaluate(() => window.scrollTo(0, 0));
+    await page.locator('#w').evaluate((h) => { (h as Widget).app.player.pause(); (h as Widget).app.player.seek(20); });
+    await settle(page);
+    await page.screenshot({ path: `${SHOTS}/embed-project-desktop.png` });
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+});
+
+describe('the embed on a project page, on a phone', () => {
+  it('one finger scrolls the page, two fingers turn the view; the full iframe fits 390 px', async () => {
+    const session = await openBrowser({ viewport: { width: 390, height: 844 }, colorScheme: 'dark' });
+    try {
+      const { page } = session;
+      await page.route(HOST_URL, (route) => route.fulfill({ status: 200, contentType: 'text/html', body: PROJECT }));
+      await page.goto(HOST_URL);
+      await Promise.all([done(page, 'w'),
+        page.frameLocator('#fr').locator('motion-futures[data-predict-status="done"]').waitFor({ state: 'attached', timeout: 120_000 })]);
+      expect(await page.evaluate(() => document.documentElement.scrollWidth), 'no page wider than the phone').toBeLessThanOrEqual(390);
+      await page.evaluate(() => { const p = (document.getElementById('w') as Widget).app.player; p.pause(); p.seek(20); window.scrollTo(0, 250); });
+      await settle(page);
+      mkdirSync(SHOTS, { recursive: true });
+      await page.screenshot({ path: `${SHOTS}/embed-project-phone.png` });
+      const cdp = await session.context.newCDPSession(page);
+      await cdp.send('Emulation.setTouchEmulationEnabled', { enabled: true, maxTouchPoints: 5 });
+      const v = (await page.locator('#w #viewer').boundingBox())!;
+      const cx = v.x + v.width / 2;
+      const cy = v.y + v.height / 2;
+      const swipe = async (fingers: number, dx: number, dy: number) => {
+        const at = (t: number) => Array.from({ length: fingers }, (_, i) => ({ x: cx + i * 60 - 30 * (fingers - 1) + dx * t, y: cy + dy * t, id: i }));
+        await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: at(0) });
+        for (let s = 1; s <= 10; s++) { await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: at(s / 10) }); await page.waitForTimeout(16); }
+        await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+        await page.waitForTimeout(300);
+      };
+      const scrollY = () => page.evaluate(() => window.scrollY);
+      const d0 = await viewDirection(page, 'w');
+      const y0 = await scrollY();
+      await swipe(2, 120, 0);
+      expect(await scrollY(), 'two fingers leave the page').toBe(y0);
+      const d1 = (await viewDirection(page, 'w'))!;
+      expect(Math.hypot(d1[0] - d0![0], d1[1] - d0![1], d1[2] - d0![2]), 'two fingers turn the view').toBeGreaterThan(0.1);
+      await swipe(1, 0, -150);
+      expect(await scrollY(), 'one finger scrolls the page').toBeGreaterThan(y0 + 80);
+      expect(await viewDirection(page, 'w'), 'and leaves the view').toEqual(d1);
+
+      const frame = page.frame({ url: /embed\.html/ })!;
+      await page.locator('#fr').scrollIntoViewIfNeeded();
+      await reachable(frame);
       expect(session.problems).toEqual(NO_PROBLEMS);
     } finally {
       await session.close();

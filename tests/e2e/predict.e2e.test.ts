@@ -5,6 +5,7 @@ import type { Page } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
 import { defaultHistory, otherClip } from './data';
 import { pixelStats } from './pixels';
+import { clipTitle } from '../../web/src/ui/clip-name';
 
 const baseUrl = inject('baseUrl');
 const NO_PROBLEMS = { consoleErrors: [], pageErrors: [], failedRequests: [] };
@@ -56,7 +57,9 @@ describe('predicting in the browser', () => {
     const tracks = await page.evaluate(() => window.motionFutures!.predictor.last!.prediction.frames);
     expect(tracks).toBe(horizon);
     expect(await page.locator('.sample-item').count()).toBe(1);
-    expect(await page.locator('.predict-status').textContent()).toMatch(new RegExp(`Regression GRU.*${HOME.clip.name}`));
+    const regressionFrames = manifest.models.find((m: { id: string }) => m.id === 'regression-gru').params.history_frames as number;
+    // the clip by its readable name (ui/clip-name.ts), as every text on the page names it
+    expect(await page.locator('.predict-status').textContent()).toContain(`Regression GRU (deterministic baseline): 1 future from frames ${HOME.start}–${HOME.start + regressionFrames - 1} of ${clipTitle(HOME.clip)}`);
     await page.evaluate(() => { const p = window.motionFutures!.player; p.pause(); p.seek(25); });
     await settle(page);
     await session.screenshot('predict-regression.png');

@@ -234,6 +234,8 @@ describe('share snippets', () => {
     expect(src.searchParams.get('controls')).toBe('full');
     expect(src.searchParams.get('clip')).toBe('a"b<c>&d');
     expect(src.searchParams.has('autoplay')).toBe(false);
+    expect(s).not.toMatch(/width="\d+"/);
+    expect(s).toContain('max-width: 720px; aspect-ratio: 3 / 2');
   });
 
   it('old versions are looked for beside this release', async () => {

@@ -1,12 +1,15 @@
 // <motion-futures>: the widget as a custom element, the one script a project page includes.
 //   <script type="module" src="SITE/assets/motion-futures.js"></script>
-//   <motion-futures model="regression-gru" clip="cmu_10_04" seed="3" autoplay></motion-futures>
+//   <motion-futures model="wat-rnn" clip="cmu_10_04" seed="3" k="5" autoplay></motion-futures>
 // Attributes are read once, when the element connects. With the `page` attribute the element is
 // the whole page (index.html, embed.html): the page URL overrides the attributes and is kept up
-// to date as a permalink, keys act with nothing focused, and the page works offline.
+// to date as a permalink, and keys act with nothing focused. index.html (`page`) is the site itself
+// and works offline; embed.html (`page="embed"`, for iframes) and a widget on a host page are
+// embeds: they register no service worker (nothing is precached on the host's behalf) unless the
+// host asks with `offline` (embed.html?offline=1), keep the page's scrolling, and pause unseen.
 import type { App } from '../ui/app';
 import { registerServiceWorker } from './offline';
-import { attributeParams, viewOptions, viewQuery } from './options';
+import { attributeParams, linkParams, offlineAsked, theme, viewOptions, viewQuery } from './options';
 import { mountWidget } from './widget';
 
 export class MotionFuturesElement extends HTMLElement {
@@ -16,15 +19,20 @@ export class MotionFuturesElement extends HTMLElement {
   connectedCallback(): void {
     if (this.app) return;
     const page = this.hasAttribute('page');
+    const embedded = !page || this.getAttribute('page') === 'embed';
     const params = attributeParams(this);
     if (page) params.push(...new URLSearchParams(location.search));
     try {
       this.app = mountWidget(this, {
         view: viewOptions(params, page),
-        link: params,
+        link: linkParams(params),
         onLink: page ? (search) => keepPageUrl(search) : undefined,
+        theme: theme(params),
+        embedded,
       });
-      if (page) registerServiceWorker(this.app.ready, (s) => this.app?.offline(s), () => this.app?.onStage().source.kind === 'dropped');
+      // A widget on a host page never registers: the host page is outside the worker's scope, so
+      // it would precache the site for nothing (see offline.ts).
+      if (page && (!embedded || offlineAsked(params))) registerServiceWorker(this.app.ready, (s) => this.app?.offline(s), () => this.app?.onStage().source.kind === 'dropped');
     } catch (err) {
       const box = document.createElement('p');
       box.setAttribute('role', 'alert');

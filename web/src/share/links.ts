@@ -28,12 +28,13 @@ export function embedSnippet(scriptUrl: string, state: ShareState, manifest: Man
     + `<motion-futures ${attrs.join(' ')} style="height: 480px"></motion-futures>`;
 }
 
-/** The same widget in an iframe: embed.html with the link's parameters plus the view options. */
+/** The same widget in an iframe: embed.html with the link's parameters plus the view options; as wide as its
+ * column up to 720 px at 3 : 2 (the README's snippet), so it never widens a phone page. */
 export function iframeSnippet(siteRoot: string, state: ShareState, manifest: Manifest, view: EmbedView): string {
   const url = new URL('embed.html', siteRoot);
   const q = new URLSearchParams(encodeState(state, manifest));
   q.set('controls', view.controls);
   if (view.autoplay) q.set('autoplay', '1');
   url.search = q.toString();
-  return `<iframe src="${escapeAttr(url.href)}" title="motion-futures" width="720" height="480" style="border: 0" allow="clipboard-write"></iframe>`;
+  return `<iframe src="${escapeAttr(url.href)}" title="motion-futures" style="width: 100%; max-width: 720px; aspect-ratio: 3 / 2; min-height: 400px; border: 0" allow="clipboard-write"></iframe>`;
 }

@@ -7,10 +7,12 @@
 //   &<control id>=VALUE ...   int/number: decimal; bool: 1|0; actions: comma-separated names
 //   &sample=N &frame=F &layout=overlay|side   what the stage shows of it (each optional): the selected
 //   sample as the labels number it (#N, from 1), the paused timeline frame, the layout
+//   &compare=ID,ID[,ID]   compare mode (ui/compare.ts): every model on stage, the link's model first
 import type { ControlSpec, Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import type { ControlValue } from '../ui/controls';
 import type { LayoutMode } from '../viewer/layout';
+import { MAX_COMPARED, parseCompare } from '../ui/compare';
 
 export type { ControlValue };
 
@@ -35,6 +37,8 @@ export interface ShareState {
   source?: HistorySource;
   /** What the stage shows of the prediction; each part is optional. */
   view?: StageView;
+  /** Compare mode: every model on stage, `model` first (absent: one model). */
+  compare?: string[];
 }
 
 export const LAYOUTS: readonly LayoutMode[] = ['overlay', 'side'];
@@ -66,6 +70,8 @@ export interface LinkState {
   seed?: number;
   controls: Record<string, ControlValue>;
   view?: StageView;
+  /** Compare mode: the models on stage, `model` first. */
+  compare?: string[];
 }
 
 export interface Problem {
@@ -75,7 +81,7 @@ export interface Problem {
 
 export const HASH_CHARS = 12;
 /** Names of the state's own fields, and of the view options that share the same parameter space. */
-export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout'] as const;
+export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout', 'compare'] as const;
 export const VIEW_KEYS = ['controls', 'autoplay', 'predict', 'page'] as const;
 const RESERVED = new Set<string>([...STATE_KEYS, ...VIEW_KEYS]);
 /** The action-sequence composer's length when the manifest gives no max_length (controls.ts). */
@@ -174,6 +180,14 @@ export function validateState(state: ShareState, manifest: Manifest): ModelEntry
   }
   if (v.frame !== undefined && !(Number.isInteger(v.frame) && v.frame >= 0)) throw new UrlStateError(`the frame must be a frame number, got ${v.frame}`);
   if (v.layout !== undefined && !LAYOUTS.includes(v.layout)) throw new UrlStateError(`the layout must be ${LAYOUTS.join(' or ')}, got '${v.layout}'`);
+  if (state.compare !== undefined) {
+    const c = state.compare;
+    const bad = c.find((id) => !manifest.models.some((m) => m.id === id));
+    if (bad !== undefined) throw new UrlStateError(`compare mode names '${bad}', which this site does not serve`);
+    if (c.length < 2 || c.length > MAX_COMPARED || new Set(c).size !== c.length || c[0] !== state.model) {
+      throw new UrlStateError(`compare mode takes 2 to ${MAX_COMPARED} different models, the link's model first, got ${c.join(',')}`);
+    }
+  }
   return entry;
 }
 
@@ -199,6 +213,7 @@ export function encodeState(state: ShareState, manifest: Manifest): [string, str
   if (v.sample !== undefined) out.push(['sample', String(v.sample + 1)]);
   if (v.frame !== undefined) out.push(['frame', String(v.frame)]);
   if (v.layout !== undefined) out.push(['layout', v.layout]);
+  if (state.compare?.length) out.push(['compare', state.compare.join(',')]);
   return out;
 }
 
@@ -308,6 +323,17 @@ export function decodeState(params: Iterable<[string, string]>, manifest: Manife
     else warn(`The layout must be ${LAYOUTS.join(' or ')}, got '${layout}'; the page picks one.`);
   }
   if (Object.keys(view).length) state.view = view;
+
+  // Compare mode: known models only (each dropped one named), the link's model first.
+  const compare = q.get('compare');
+  if (compare !== undefined) {
+    const parsed = parseCompare(compare, manifest.models);
+    parsed.problems.forEach(warn);
+    if (parsed.ids.length) {
+      const ids = [entry.id, ...parsed.ids.filter((id) => id !== entry!.id)].slice(0, MAX_COMPARED);
+      state.compare = ids;
+    }
+  }
 
   const known = new Set<string>([...RESERVED, ...entry.controls.map((c) => c.id)]);
   for (const key of q.keys()) {

@@ -1,7 +1,7 @@
 // One motion-futures instance: wires viewer, player, panels, keyboard and sharing into the parts
 // a widget gives it (web/src/embed/widget.ts). The main page, embed.html and every
 // <motion-futures> on a project page run this same code.
-import type { Manifest } from '../contract/types';
+import type { Manifest, ModelEntry } from '../contract/types';
 import { sharedClient, sharedManifest, newViewId } from '../embed/shared';
 import { EMBED_SCRIPT } from '../embed/site';
 import type { Motion } from '../motion/clip';
@@ -40,6 +40,8 @@ import { mountCapturePanel } from './capture';
 import { mountViewSummary } from './view-summary';
 import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar } from './stage-parts';
 import { mountStageView } from './stage-view';
+import { mountComparePanel, type ComparePanel } from './compare-panel';
+import { mountRefusalNotice } from './refusal-notice';
 
 /** How an instance looks and starts, apart from the prediction state. */
 export interface ViewOptions {
@@ -130,7 +132,10 @@ export { stageModel };
  */
 export function withStageDefaults(link: [string, string][], manifest: Manifest): [string, string][] {
   if (!manifest.models.length || link.some(([k]) => k === 'model')) return link;
-  const entry = stageModel(manifest);
+  // a compare list without a model opens on its first model this site serves
+  const compared = (link.find(([k]) => k === 'compare')?.[1] ?? '').split(',').map((id) => id.trim())
+    .map((id) => manifest.models.find((m) => m.id === id)).find(Boolean);
+  const entry = compared ?? stageModel(manifest);
   const out: [string, string][] = [['model', entry.id], ...link];
   const k = entry.controls.find((c) => c.id === 'k');
   if (k && !link.some(([name]) => name === 'k')) {
@@ -211,6 +216,26 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     o.status('exportFile', undefined);
   };
   const rangeNotice = mountRangeNotice(parts.notice);
+  // A refusal's notice sits where the range notice does (they never show together).
+  const refusalNotice = mountRefusalNotice(parts.notice.parentElement ?? parts.notice, (start) => {
+    predictor.setStart(start);
+    refreshShare();
+    askFutures();
+  });
+  /** A refusal leaves the refused history alone on stage: nothing else describes older futures. */
+  const refusal: typeof refusalNotice = {
+    show(r) {
+      if (r) {
+        rangeNotice(null, '');
+        shown = null;
+        toolbar.setLegend({ history: true, truth: false, k: 0 });
+        clearExportStatus(); exporter.refresh(); summarise(); refreshShare();
+      }
+      refusalNotice.show(r);
+    },
+    search: (st) => refusalNotice.search(st),
+  };
+  let compare: ComparePanel | null = null;
 
   const panel = parts.panel;
   panel.replaceChildren();
@@ -248,6 +273,14 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     timeline: (marks) => { origin = marks?.origin ?? null; playback.setTimeline(marks); },
     beforeShow: (k) => { if (!layoutChosen) setLayout(defaultLayout(k)); },
     clipTitle: (name) => titleOf(name),
+    refusal,
+    onModel: (entry) => compare?.setPrimary(entry.id),
+    compare: (): ModelEntry[] => (compare?.chosen() ?? []).flatMap((id) => predictor.manifest?.models.filter((e) => e.id === id) ?? []),
+    compareStale: (on) => compare?.stale(on),
+    onCompare: (rows) => {
+      compare?.show(rows);
+      o.status('compareModels', rows ? rows.map((r) => r.entry.id).join(',') : undefined);
+    },
     onShown: () => {
       shown = predictor.last;
       const p = shown!.prediction;
@@ -347,6 +380,8 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       version: SITE_VERSION, model: inputs.model.id, hash: shortHash(inputs.model.hash), clip: motion.name,
       start: inputs.start, seed: inputs.seed, controls: inputs.controls, source, view: stageView(),
     };
+    const companions = compare?.chosen() ?? [];
+    if (companions.length) state.compare = [inputs.model.id, ...companions];
     const why = unlinkableReason(state);
     return why ? { unlinkable: why } : { state };
   }
@@ -419,7 +454,12 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       // a manifest that does not load is reported by the predictor
     }
     await predictor.start(asked?.model);
+    if (predictor.manifest?.models.length && predictor.inputsNow()) {
+      compare = mountComparePanel(addSection(panel, 'compare', 'Compare methods', 'clip').body, predictor.manifest.models,
+        predictor.inputsNow()!.model.id, () => { refreshShare(); predictor.changed(); });
+    }
     if (asked) predictor.setInputs(asked);
+    if (asked?.compare) { compare?.setPrimary(asked.model); compare?.set(asked.compare); }
     if (asked?.view?.layout) { layoutChosen = true; setLayout(asked.view.layout); }
     if (options.autoPredict) predictor.warm();
     return asked;

@@ -97,7 +97,10 @@ export function mountPlaybackBar(container: HTMLElement, player: Player): Playba
   });
   function updateTime(s: PlayerState): void {
     const text = s.length ? formatTime(s.frame, s.length, s.fps, timeline?.origin ?? 0) : 'no clip';
-    readout.textContent = text;
+    // The frame number in a span of its own, which a narrow bar leaves out (embed/widget.css).
+    const cut = text.indexOf(' (frame');
+    if (cut < 0) readout.textContent = text;
+    else readout.replaceChildren(text.slice(0, cut), el('span', { class: 'time-frame' }, text.slice(cut)));
     scrubber.value = String(s.frame);
     scrubber.setAttribute('aria-valuetext', text);
   }

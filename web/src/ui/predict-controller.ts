@@ -23,6 +23,10 @@ import { readoutAfter, readoutJson, type StageReadout } from './readout';
 import { buildRequest } from './request-builder';
 import { followedSequence } from './follow-action';
 import type { ShownState } from './stage-parts';
+import { checkRequest } from '../predictor/request';
+import { compareTracks, rowControls, rowStart, shortLabel, type CompareRow } from './compare';
+import { refusalSentence, type RefusalNotice } from './refusal-notice';
+import { candidateStarts, nearestAccepted } from './start-search';
 
 /** Pause after the last change before predicting again (ms). */
 export const REPREDICT_DELAY = 300;
@@ -57,6 +61,16 @@ export interface PredictOptions {
   beforeShow?(k: number): void;
   /** A clip's readable name (ui/clip-name.ts) for the texts that name it; default: its name. */
   clipTitle?(name: string): string;
+  /** The page's model was picked in the list. */
+  onModel?(entry: ModelEntry): void;
+  /** Compare mode (ui/compare.ts): the other models to run beside the page's (none: compare mode is off). */
+  compare?(): ModelEntry[];
+  /** Every row on stage, the page's model first (null: compare mode is off or nothing is shown). */
+  onCompare?(rows: CompareRow[] | null): void;
+  /** The rows' read-outs no longer match the inputs (new futures are on their way). */
+  compareStale?(on: boolean): void;
+  /** The notice a refusal shows over the stage (ui/refusal-notice.ts). */
+  refusal?: RefusalNotice;
 }
 
 /** The inputs that make a request, as the share code reads and sets them. */
@@ -77,6 +91,8 @@ export interface Shown {
   seed: number;
   controls: Record<string, ControlValue>;
   readout: StageReadout | null;
+  /** Compare mode: every row on stage, this prediction's first. */
+  compare?: CompareRow[];
 }
 
 /** The tracks a prediction shows: history, each sample up to its own length, and the truth. */
@@ -153,7 +169,7 @@ export class PredictController {
     this.results = mountPredictionPanel(out.body, (s) => this.select(s), { numbersHelp: `${this.o.baseUrl}explainer.html#numbers` });
     this.results.clear();
     this.inputs = mountPredictPanel(body, this.manifest, model, {
-      onModel: (entry) => { this.clipChanged(this.o.currentClip(), entry); this.o.onChange?.(); },
+      onModel: (entry) => { this.clipChanged(this.o.currentClip(), entry); this.o.onModel?.(entry); this.o.onChange?.(); },
       onPredict: () => { this.setLive(true); void this.predict(); },
       onChange: () => { this.o.onChange?.(); this.changed(); },
       status: this.o.status,
@@ -230,7 +246,10 @@ export class PredictController {
     this.shownKey = null;
     this.selected = null;
     this.results?.clear();
+    this.o.refusal?.show(null);
+    this.o.onCompare?.(null);
     this.o.status('stale', undefined);
+    this.o.status('refusalSearch', undefined);
   }
 
   /** Whether changes predict again on their own. */
@@ -280,7 +299,12 @@ export class PredictController {
     const inputs = this.inputsNow();
     const m = this.o.currentClip();
     if (!inputs || !m) return null;
-    return JSON.stringify([inputs.model.id, inputs.seed, inputs.start, inputs.controls, m.name, m.frames, m.origin?.file ?? null]);
+    return this.keyOf(inputs.model.id, inputs.seed, inputs.start, inputs.controls, m);
+  }
+
+  private keyOf(model: string, seed: number, start: number, controls: Record<string, ControlValue>, m: Motion): string {
+    const compare = this.o.compare?.().map((e) => e.id) ?? [];
+    return JSON.stringify([model, seed, start, controls, m.name, m.frames, m.origin?.file ?? null, compare]);
   }
 
   async predict(): Promise<void> {
@@ -315,14 +339,20 @@ export class PredictController {
       performance.mark('mf:prediction-received');
       if (ticket !== this.ticket) return; // a newer request replaces this one
       if (this.o.currentClip() !== m) { this.inputs.setBusy(null); return; } // the user moved on to another clip
-      await this.show(m, start, n, prediction, ms, entry, inputs, readout ? { readout } : readoutError ? { error: readoutError } : undefined);
+      const companions = this.o.compare?.() ?? [];
+      const rows = companions.length ? await this.compareRows(m, start, n, inputs, companions, ticket) : undefined;
+      if (ticket !== this.ticket || this.o.currentClip() !== m) return;
+      await this.show(m, start, n, prediction, ms, entry, inputs, readout ? { readout } : readoutError ? { error: readoutError } : undefined, rows);
     } catch (err) {
       if (err instanceof Superseded || ticket !== this.ticket) return;
       this.inputs.setBusy(null);
       let text: string;
       if (err instanceof PredictError) {
+        // a refusal leaves nothing of another request on stage, and looks for a start that works
         text = err.message;
-        this.o.banner.show(`Cannot predict: ${err.message}`, 'warning', 'predict');
+        this.inputs.setStatus(text);
+        this.refuse(m, start, n, entry, request, text, ticket);
+        return;
       } else {
         text = err instanceof ModelLoadError ? err.message : `Prediction failed: ${(err as Error).message ?? err}`;
         this.o.banner.show(text, 'error', 'predict');
@@ -331,6 +361,78 @@ export class PredictController {
       this.o.stageStatus?.(this.last ? `Not updated (${text}). Still shown, out of date: ${this.describe(this.last)}` : `Cannot predict: ${text}`, 'error');
       this.o.status('predictStatus', 'error');
     }
+  }
+
+  /** Compare mode: the other models' futures from the same history end, seed, K and horizon, each
+   *  from its own history length; a refusal or a clip too short for a history is that row's message. */
+  private async compareRows(m: Motion, start: number, n: number, inputs: PredictInputs, companions: ModelEntry[],
+    ticket: number): Promise<CompareRow[]> {
+    const fps = this.manifest!.fps;
+    return Promise.all(companions.map(async (entry): Promise<CompareRow> => {
+      const frames = entry.params.history_frames;
+      const controls = rowControls(entry, inputs.controls);
+      const from = rowStart(start, n, frames);
+      if (from === null) {
+        return { entry, start: 0, controls, error: `${entry.label} needs ${frames} frames of history; the clip has ${start + n} before the futures.` };
+      }
+      const history = { positions: clipWindow(m, from, frames), frames, joints: m.joints };
+      try {
+        const r = await this.client!.predict(`${this.o.viewId}:compare:${entry.id}`, entry.id, history,
+          buildRequest(entry, controls, inputs.seed, fps), undefined, { truth: truthAfter(m, from, frames), skeleton: m.skeleton });
+        this.loaded.add(entry.id);
+        return { entry, start: from, controls, prediction: r.prediction, readout: r.readout ?? null };
+      } catch (err) {
+        if (err instanceof Superseded || ticket !== this.ticket) throw err instanceof Superseded ? err : new Superseded();
+        return { entry, start: from, controls, error: `${entry.label} cannot predict from this history: ${(err as Error).message}` };
+      }
+    }));
+  }
+
+  /** A refusal: the stage keeps only the refused history (nothing another request predicted), the
+   *  notice says so in one sentence and, when the history is what was refused, looks for the nearest
+   *  start the method accepts with the same predictor (ui/start-search.ts). */
+  private refuse(m: Motion, start: number, n: number, entry: ModelEntry, request: ReturnType<typeof buildRequest>,
+    reason: string, ticket: number): void {
+    this.clearShown();
+    this.o.view.setTracks([{ id: 'history', role: 'history', positions: clipWindow(m, start, n), frames: n, joints: m.joints, startFrame: 0, label: 'history' }], m.skeleton);
+    this.o.player.load(n, m.fps, 0);
+    this.o.timeline?.(null);
+    let searchable = true;
+    try {
+      checkRequest(request, entry, this.manifest!.actions, this.manifest!.fps);
+    } catch {
+      searchable = false; // the request itself is refused: another start would not help
+    }
+    const refusal = { model: entry.label, start, frames: n, clip: this.o.clipTitle?.(m.name) ?? m.name, reason, searchable };
+    this.o.refusal?.show(refusal);
+    const why = reason.charAt(0).toUpperCase() + reason.slice(1);
+    this.o.stageStatus?.(`${refusalSentence(refusal)} ${why}${/[.!?]$/.test(why) ? '' : '.'}`, 'error');
+    this.o.status('predictStatus', 'error');
+    if (!searchable) return;
+    this.o.status('refusalSearch', 'searching');
+    // K = 1: a refusal is the history's (predictor/history.ts, the methods' own checks), not K's
+    const probe = { ...request, k: 1 };
+    const tryStart = async (s: number) => {
+      if (ticket !== this.ticket || this.o.currentClip() !== m) throw new Superseded();
+      try {
+        await this.client!.predict(`${this.o.viewId}:search`, entry.id, { positions: clipWindow(m, s, n), frames: n, joints: m.joints }, probe);
+        return 'accepted' as const;
+      } catch (err) {
+        if (err instanceof PredictError) return 'refused' as const;
+        throw err;
+      }
+    };
+    const starts = candidateStarts(start, m.frames - n);
+    void nearestAccepted(starts, tryStart, (tried, of) => { if (ticket === this.ticket) this.o.refusal?.search({ kind: 'searching', tried, of }); })
+      .then((found) => {
+        if (ticket !== this.ticket) return;
+        this.o.refusal?.search(found === null ? { kind: 'none', tried: starts.length } : { kind: 'found', start: found });
+        this.o.status('refusalSearch', found === null ? 'none' : String(found));
+      }, (err) => {
+        if (err instanceof Superseded || ticket !== this.ticket) return;
+        this.o.refusal?.search({ kind: 'none', tried: 0 });
+        this.o.status('refusalSearch', 'failed');
+      });
   }
 
   /** "WAT (RNN): 5 futures from frames 0–9 of walk_01, seed 1, K = 5, actions = walk." */
@@ -350,6 +452,7 @@ export class PredictController {
     const m = this.o.currentClip();
     this.o.status('stale', this.last ? 'true' : undefined);
     this.results?.stale(this.last !== null);
+    this.o.compareStale?.(this.last?.compare !== undefined);
     if (!inputs || !m) return;
     const next = this.describe({ model: inputs.model.id, start: inputs.start, clip: m.name, seed: inputs.seed, controls: inputs.controls });
     this.o.stageStatus?.(this.last ? `${doing} ${next} (the figures still show the previous futures)` : `${doing} ${next}`, 'busy');
@@ -358,8 +461,10 @@ export class PredictController {
   /** `computed`: the read-out the worker computed with the prediction, or why it could not; without
    *  it (a replay, a client that does not compute it) the read-out is computed here. */
   private show(m: Motion, start: number, n: number, p: Prediction, ms: number, entry: ModelEntry, inputs: PredictInputs,
-    computed?: { readout: StageReadout } | { error: string }): Promise<void> {
+    computed?: { readout: StageReadout } | { error: string }, rows?: CompareRow[]): Promise<void> {
     this.o.banner.clear('predict');
+    this.o.refusal?.show(null);
+    this.o.status('refusalSearch', undefined);
     let readout: StageReadout | null = null;
     if (computed && 'readout' in computed) readout = computed.readout;
     else if (computed) this.o.banner.show(`The read-out could not be computed: ${computed.error}`, 'warning', 'readout');
@@ -370,14 +475,24 @@ export class PredictController {
         this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
       }
     }
-    this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, readout };
-    this.shownKey = JSON.stringify([entry.id, inputs.seed, start, inputs.controls, m.name, m.frames, m.origin?.file ?? null]);
+    const all = rows ? [{ entry, start, controls: inputs.controls, prediction: p, readout }, ...rows] : undefined;
+    this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, readout, compare: all };
+    this.shownKey = this.keyOf(entry.id, inputs.seed, start, inputs.controls, m);
     this.selected = null;
     this.o.beforeShow?.(p.k);
-    this.o.view.setTracks(predictionTracks(m, start, n, p), m.skeleton);
+    if (all) {
+      // compare mode: one row per method, the futures of all starting on the same timeline frame
+      const { tracks, origin } = compareTracks(m, all);
+      this.o.view.setTracks(tracks, m.skeleton);
+      this.o.player.load(origin + Math.max(...all.flatMap((r) => (r.prediction ? [...r.prediction.lengths] : []))), m.fps, 0);
+      this.o.timeline?.(timelineMarks(origin, p, m.fps));
+    } else {
+      this.o.view.setTracks(predictionTracks(m, start, n, p), m.skeleton);
+      this.o.player.load(n + Math.max(...p.lengths), m.fps, 0);
+      this.o.timeline?.(timelineMarks(n, p, m.fps));
+    }
     this.o.view.setSelected(null);
-    this.o.player.load(n + Math.max(...p.lengths), m.fps, 0);
-    this.o.timeline?.(timelineMarks(n, p, m.fps));
+    this.o.onCompare?.(all ?? null);
     const shown = this.last;
     // The list, the numbers and the statuses follow once the stage has drawn the new futures, and the
     // futures play once all is in: at K = 50 building everything in one task, with playback drawing
@@ -408,7 +523,10 @@ export class PredictController {
   /** The last part of show(): the texts and statuses that say the futures are in, then 'done'. */
   private settle(shown: Shown, entry: ModelEntry, current: boolean): void {
     const p = shown.prediction;
-    const text = this.describe(shown);
+    const others = (shown.compare ?? []).slice(1).map((r) => (r.prediction
+      ? `${shortLabel(r.entry)} (frames ${r.start}–${r.start + r.entry.params.history_frames - 1}, K = ${r.prediction.k})`
+      : `${shortLabel(r.entry)} (no futures: see Compare methods)`));
+    const text = `${this.describe(shown)}${others.length ? ` Compared with ${others.join(' and ')}, same seed.` : ''}`;
     const out = p.warnings?.length ? ' Out of the training range: shown anyway.' : '';
     if (current) {
       this.inputs?.setBusy(null);

@@ -19,15 +19,16 @@ const PRESET_LABELS: Record<CameraPreset, string> = {
 /** Stage width (CSS px) below which the bar uses its short labels. */
 const COMPACT_BELOW = 560;
 
+// px, not rem: in an embed the host's root font size must not resize the bar (html { font-size: 62.5% }).
 const CSS = `
-.stage-view { position: absolute; right: 0.5rem; bottom: 0.5rem; z-index: 2; display: flex; gap: 0.3rem; align-items: center;
-  flex-wrap: wrap; justify-content: flex-end; max-width: calc(100% - 1rem); font: 500 0.8rem/1.2 system-ui, sans-serif; }
+.stage-view { position: absolute; right: 8px; bottom: 8px; z-index: 2; display: flex; gap: 5px; align-items: center;
+  flex-wrap: wrap; justify-content: flex-end; max-width: calc(100% - 16px); font: 500 13px/1.2 system-ui, sans-serif; }
 .stage-view select, .stage-view button { font: inherit; color: var(--fg); background: color-mix(in srgb, var(--panel-bg) 88%, transparent);
-  border: 1px solid var(--border); border-radius: 6px; padding: 0.25rem 0.45rem; cursor: pointer; min-height: 1.9rem; }
+  border: 1px solid var(--border); border-radius: 6px; padding: 4px 7px; cursor: pointer; min-height: 30px; }
 .stage-view button[aria-pressed='true'] { border-color: var(--accent); box-shadow: inset 0 0 0 1px var(--accent); font-weight: 650; }
 .stage-view button:disabled { cursor: default; }
 .figure-action { font-weight: 500; }
-.figure-badge b { font-weight: 700; padding: 0 0.3rem; border-radius: 3px; }
+.figure-badge b { font-weight: 700; padding: 0 5px; border-radius: 3px; }
 .figure-stopped b { background: var(--fg); color: var(--panel-bg); }
 .figure-best b { box-shadow: inset 0 0 0 2px var(--figure-colour); }
 /* on the scrubber: where the next action starts, above the track; stops and cuts stay below it */

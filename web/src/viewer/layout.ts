@@ -67,12 +67,13 @@ export function chooseColumns(cells: number, w: number, d: number, aspect: numbe
  * cell rather than given its own (unless nothing else is on stage).
  */
 export function layoutTracks(
-  tracks: readonly { role: TrackRole; sample?: number }[],
+  tracks: readonly { role: TrackRole; sample?: number; group?: number }[],
   mode: LayoutMode,
   options: LayoutOptions = {},
 ): Layout {
   const spacing = Math.max(options.spacing ?? CELL_SPACING, options.cellWidth ?? 0);
   const rowSpacing = Math.max(options.rowSpacing ?? ROW_SPACING, options.cellDepth ?? 0);
+  if (tracks.some((t) => t.group !== undefined)) return groupedLayout(tracks, mode, spacing, rowSpacing, options.heading ?? 0);
   if (mode === 'overlay' || tracks.length === 0) {
     return {
       placements: tracks.map((_, track) => ({ track, cell: 0, x: 0, z: 0, shared: false })),
@@ -103,6 +104,48 @@ export function layoutTracks(
     }
   }
   return { placements, cells, cols, rows, spacing, rowSpacing };
+}
+
+/**
+ * Compare mode: one row per method (its `group`; row 0 farthest from the camera), each laid out as
+ * side by side lays out one prediction (truth first, then samples), its history copied into its own
+ * row's cells only. Overlaid, each method is one cell, the methods side by side across the heading.
+ */
+function groupedLayout(tracks: readonly { role: TrackRole; sample?: number; group?: number }[], mode: LayoutMode,
+  spacing: number, rowSpacing: number, heading: number): Layout {
+  const groups = [...new Set(tracks.map((t) => t.group ?? 0))].sort((a, b) => a - b);
+  const rowOf = new Map(groups.map((g, r) => [g, r]));
+  const c = Math.cos(heading);
+  const s = Math.sin(heading);
+  const placements: Placement[] = [];
+  if (mode === 'overlay') {
+    const cols = groups.length;
+    tracks.forEach((t, track) => {
+      const col = rowOf.get(t.group ?? 0)!;
+      const u = (col - (cols - 1) / 2) * spacing;
+      placements.push({ track, cell: col, x: clean(c * u), z: clean(-s * u), shared: false });
+    });
+    return { placements, cells: cols, cols, rows: 1, spacing, rowSpacing };
+  }
+  const rows = groups.map((g) => {
+    const all = tracks.map((t, i) => ({ t, i })).filter(({ t }) => (t.group ?? 0) === g);
+    const own = all.filter(({ t }) => t.role !== 'history');
+    own.sort((p, q) => CELL_ORDER[p.t.role] - CELL_ORDER[q.t.role] || (p.t.sample ?? 0) - (q.t.sample ?? 0) || p.i - q.i);
+    return { own: own.length ? own : all, shared: own.length ? all.filter(({ t }) => t.role === 'history') : [] };
+  });
+  const cols = Math.max(1, ...rows.map((r) => r.own.length));
+  const at = (row: number, col: number) => {
+    const u = (col - (cols - 1) / 2) * spacing;
+    const v = (row - (rows.length - 1) / 2) * rowSpacing;
+    return { x: clean(c * u + s * v), z: clean(-s * u + c * v) };
+  };
+  rows.forEach((r, row) => {
+    r.own.forEach(({ i }, col) => placements.push({ track: i, cell: row * cols + col, ...at(row, col), shared: false }));
+    for (const { i } of r.shared) {
+      r.own.forEach((_, col) => placements.push({ track: i, cell: row * cols + col, ...at(row, col), shared: true }));
+    }
+  });
+  return { placements, cells: rows.length * cols, cols, rows: rows.length, spacing, rowSpacing };
 }
 
 /** -0 and rounding dust read as 0. */

@@ -20,6 +20,9 @@ export interface Track {
   segments?: TrackSegment[];
   /** The sample stopped by its own rule (its last action's stop, Eq. 8) at its last frame: a badge says so. */
   stopped?: boolean;
+  /** Compare mode (ui/compare.ts): the method's row on stage (0 first), and the method's name its labels lead with. */
+  group?: number;
+  groupLabel?: string;
 }
 
 export interface TrackSegment { start: number; length: number; action?: string; stopped?: boolean }

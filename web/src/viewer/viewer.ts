@@ -47,6 +47,8 @@ export interface FigureInfo {
   stopped: boolean;
   /** It is the highlighted sample closest to the ground truth. */
   best: boolean;
+  /** Compare mode: the method's row (track.group). */
+  group?: number;
 }
 
 /** What the page talks to; the UI never needs to know whether WebGL is there. */
@@ -184,7 +186,8 @@ export class Viewer implements SkeletonView {
     }
     this.givenBoxes = tracks.map(poseBoxes);
     try {
-      this.bestOf = bestSample(tracks);
+      // compare mode: the page's own model's row (group 0), whose truth and samples the toggle is about
+      this.bestOf = bestSample(tracks.filter((tr) => (tr.group ?? 0) === 0));
     } catch {
       this.bestOf = null; // a track that does not fit the truth: no highlight, the figures still draw
     }
@@ -306,7 +309,8 @@ export class Viewer implements SkeletonView {
         track: track.id, role: track.role, sample: track.sample, cell: p.cell, shared: p.shared,
         label: slot?.element.textContent ?? '', colour: this.figuresMesh.identityHex(i), box,
         action: status.action, stopped: status.stopped,
-        best: this.bestShown && track.role === 'prediction' && this.bestOf?.sample === track.sample,
+        best: this.bestShown && track.role === 'prediction' && this.bestOf?.sample === track.sample && (track.group ?? 0) === 0,
+        group: track.group,
       };
     });
   }
@@ -363,7 +367,9 @@ export class Viewer implements SkeletonView {
   private arrange(reframe: boolean): void {
     const heading = this.heading();
     const { width, height } = this.stage.size;
-    const cell = this.mode === 'side' ? this.spread(heading) : null;
+    // compare mode overlaid puts each method in a cell of its own, as wide as its futures need
+    const grouped = this.tracks.some((tr) => tr.group !== undefined);
+    const cell = this.mode === 'side' || grouped ? this.spread(heading) : null;
     this.arrangement = layoutTracks(this.tracks, this.mode, {
       heading, spacing: MIN_CELL_WIDTH, rowSpacing: MIN_CELL_DEPTH,
       cellWidth: cell?.width, cellDepth: cell?.depth, aspect: width / height,
@@ -489,10 +495,11 @@ export class Viewer implements SkeletonView {
       const key = this.mode === 'side' && this.arrangement.cells > 1 ? p.cell : p.track;
       groups.set(key, [...(groups.get(key) ?? []), pi]);
     });
-    let rank = 0;
+    const ranks = new Map<number, number>(); // overlaid labels stack per place (per method in compare mode)
     for (const placements of groups.values()) {
       const owner = this.arrangement.placements[placements.find((pi) => !this.arrangement.placements[pi].shared) ?? placements[0]];
       const track = this.tracks[owner.track];
+      const rank = ranks.get(owner.cell) ?? 0;
       const element = document.createElement('div');
       element.className = `figure-label figure-label-${track.role}`;
       // the name, then what changes with time (each part starts " · " so the text reads as one line)
@@ -514,7 +521,7 @@ export class Viewer implements SkeletonView {
       // Overlaid, labels stack above the shared place (the history, whose figure gives way to the
       // futures, shares the first step with the ground truth).
       const lift = LABEL_LIFT + (this.mode === 'overlay' || this.arrangement.cells <= 1 ? LABEL_STEP * rank : 0);
-      if (track.role !== 'history') rank += 1;
+      if (track.role !== 'history') ranks.set(owner.cell, rank + 1);
       this.labels.push({ object, element, placements, sample: track.sample, lift, track: owner.track, action, stopped, best });
     }
   }
@@ -548,7 +555,7 @@ export class Viewer implements SkeletonView {
       l.object.visible = pi !== undefined;
       l.element.classList.toggle('figure-label-selected', this.selected !== null && l.sample === this.selected);
       l.element.classList.toggle('figure-label-muted', focus !== null && l.sample !== undefined && l.sample !== focus);
-      l.element.classList.toggle('figure-label-best', best !== null && l.sample === best);
+      l.element.classList.toggle('figure-label-best', best !== null && l.sample === best && (this.tracks[l.track]?.group ?? 0) === 0);
       if (pi === undefined) continue;
       this.labelStatus(l, best);
       const p = this.arrangement.placements[pi];
@@ -569,7 +576,7 @@ export class Viewer implements SkeletonView {
     const track = this.tracks[l.track];
     if (!track || track.role !== 'prediction') return;
     const { action, stopped } = figureStatus(track, this.t);
-    const isBest = best !== null && l.sample === best;
+    const isBest = best !== null && l.sample === best && (track.group ?? 0) === 0;
     // a hidden part has no text either: the label's text is what it shows (FigureInfo.label); a badge
     // is a pill after its " · "
     const set = (e: HTMLElement, text: string, pill: boolean) => {
@@ -616,10 +623,9 @@ export class Viewer implements SkeletonView {
 }
 
 function labelText(track: Track): string {
-  if (track.role === 'prediction') return `#${(track.sample ?? 0) + 1}${track.cut ? ' · cut' : ''}`;
-  if (track.role === 'truth') return 'ground truth';
-  if (track.role === 'history') return 'history';
-  return track.label ?? 'clip';
+  const own = track.role === 'prediction' ? `#${(track.sample ?? 0) + 1}${track.cut ? ' · cut' : ''}`
+    : track.role === 'truth' ? 'ground truth' : track.role === 'history' ? 'history' : track.label ?? 'clip';
+  return track.groupLabel ? `${track.groupLabel} ${own}` : own;
 }
 
 /** Each stored frame's box of joint positions. */
