@@ -25,10 +25,24 @@ function post(msg: FromWorker, transfer: Transferable[] = []): void {
   scope.postMessage(msg, transfer);
 }
 
+/** A one-node ONNX graph (Identity on float[1], opset 13, 65 bytes). */
+const OPENER = 'CAc6NwoQCgF4EgF5IghJZGVudGl0eRIBd1oPCgF4EgoKCAgBEgQKAggBYg8KAXkSCgoICAESBAoCCAFCBAoAEA0=';
+
+/** onnxruntime, started as soon as the worker starts: a session of OPENER makes it fetch,
+ *  compile and start its 14 MB wasm while the model's files are still on their way (it used to wait
+ *  for them: make bench's first-futures timeline, docs/PERFORMANCE.md). A failed opener is not
+ *  reported: the model's own session then fails or succeeds with its own message. */
 function runtime(): Promise<OrtModule> {
-  ortModule ??= import('onnxruntime-web/wasm').then((ort) => {
+  ortModule ??= import('onnxruntime-web/wasm').then(async (ort) => {
     ort.env.wasm.numThreads = 1; // no COOP/COEP needed; on 2 cores threads were slower
     ort.env.logLevel = 'error';
+    try {
+      const bytes = Uint8Array.from(atob(OPENER), (c) => c.charCodeAt(0));
+      const opener = await ort.InferenceSession.create(bytes, { executionProviders: ['wasm'] });
+      void opener.release();
+    } catch {
+      // see above
+    }
     return ort as unknown as OrtModule;
   });
   return ortModule;
@@ -119,6 +133,12 @@ async function run(job: Job): Promise<void> {
     post({ type: 'error', id: job.id, kind: kindOf(err, job), message: (err as Error).message ?? String(err) });
   }
 }
+
+// onnxruntime starts with the worker (web/src/ui/predictor-start.ts starts it before the page has its
+// manifest). The init message is handled first anyway: a module worker gets its queued messages
+// once this script has run, and onnxruntime's script is fetched after that, so an instrumented
+// page's wasm capture is in place before onnxruntime instantiates its wasm.
+void runtime();
 
 scope.onmessage = (ev: MessageEvent<ToWorker>) => {
   const msg = ev.data;

@@ -2,7 +2,7 @@
 // a widget gives it (web/src/embed/widget.ts). The main page, embed.html and every
 // <motion-futures> on a project page run this same code.
 import type { Manifest, ModelEntry } from '../contract/types';
-import { sharedClient, sharedManifest, newViewId } from '../embed/shared';
+import { sharedManifest, newViewId } from '../embed/shared';
 import { EMBED_SCRIPT } from '../embed/site';
 import type { Motion } from '../motion/clip';
 import { movingStart } from '../motion/moving-start';
@@ -40,6 +40,7 @@ import { mountCapturePanel } from './capture';
 import { mountViewSummary } from './view-summary';
 import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar } from './stage-parts';
 import { mountStageView } from './stage-view';
+import { startWorker, workerClient } from './predictor-start';
 import { mountComparePanel, type ComparePanel } from './compare-panel';
 import { mountRefusalNotice } from './refusal-notice';
 
@@ -174,6 +175,8 @@ const megabytes = (b: number) => `${(b / 1e6).toFixed(b >= 1e7 ? 0 : 1)} MB`;
 
 export function startApp(parts: AppParts, o: AppOptions): App {
   const { view: options, siteRoot } = o;
+  performance.mark('mf:app-start'); // marks: the benchmark's first-futures timeline (bench/browser.ts)
+  if (options.autoPredict) startWorker(siteRoot); // onnxruntime starts while the stage is built
   const banner = new MessageBanner(parts.messages);
   if (options.page) catchUncaught(banner);
   const { view } = mountViewer(parts.viewer);
@@ -256,6 +259,9 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     return entry ? clipTitle(entry) : name;
   };
 
+  // The first futures follow at once: until they are in (or cannot be), the clip waits on its first
+  // frame, as its frames would take the CPU the worker starts onnxruntime on (make bench: futures drawn).
+  let holdPlayback = options.autoPredict && options.autoplay;
   const askFutures = () => { predictor.setLive(true); void predictor.predict(); };
   const bar = mountMinimalBar(parts.bar, {
     onNewFutures() {
@@ -267,7 +273,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
 
   const predictor = new PredictController({
     baseUrl: siteRoot, panel, view, player, banner, before: 'clip', currentClip: () => motion,
-    manifest: () => sharedManifest(siteRoot), client: (m) => sharedClient(siteRoot, m), viewId: newViewId(),
+    manifest: () => sharedManifest(siteRoot), client: (m) => workerClient(siteRoot, m), viewId: newViewId(),
     status: o.status, onChange: () => refreshShare(),
     stageStatus: (text, state) => { stageStatus(text, state); },
     timeline: (marks) => { origin = marks?.origin ?? null; playback.setTimeline(marks); },
@@ -341,7 +347,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     limbLegend('clip', 0);
     clearExportStatus();
     player.load(m.frames, m.fps);
-    if (options.autoplay || linking) player.play(); // a clip the user picked plays
+    if ((options.autoplay && !holdPlayback) || linking) player.play(); // a clip the user picked plays
     const what = from.kind === 'dropped' ? `your file ${from.name}` : `the clip ${titleOf(m.name)}`;
     stageStatus(`On stage: ${what}, ${m.frames} frames (${seconds(m.frames, m.fps)}).${predictor.predictsOnChange ? ' Predicting…'
       : options.controls === 'full' ? ' Press Predict (P) for its futures.' : ''}`, 'clip');
@@ -353,7 +359,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
 
   const clips = new ClipBrowser({
     baseUrl: siteRoot, list, info, banner, defaultClip: linkParams.get('clip') || undefined, fallbackClip: DEFAULT_CLIP, status: o.status,
-    onMotion(m) { showMotion(m, { kind: 'clip' }); },
+    onMotion(m) { if (!motion) performance.mark('mf:clip-in'); showMotion(m, { kind: 'clip' }); },
   });
 
   // Bring your own motion: a dropped BVH becomes the history; what is shown can be saved.
@@ -441,8 +447,13 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     let asked: LinkState | null = null;
     try {
       const manifest = await sharedManifest(siteRoot);
+      performance.mark('mf:manifest-in');
       const decoded = decodeState(withStageDefaults(o.link, manifest), manifest, SITE_VERSION, { reportUnknown: true });
       asked = decoded.state;
+      // the model's load starts now, while the panels are built and the clip loads
+      if (options.autoPredict && asked.model && manifest.models.some((e) => e.id === asked!.model)) {
+        predictor.warm({ manifest, model: asked.model });
+      }
       showProblems(banner, decoded.problems);
       if (options.page && decoded.state.version && decoded.state.version !== SITE_VERSION) {
         void olderRelease(siteRoot, decoded.state.version).then((url) => {
@@ -465,8 +476,14 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     return asked;
   };
 
-  const ready = Promise.all([startPredictor(), clips.start()]).then(async ([asked]) => {
+  const started = startPredictor();
+  performance.mark('mf:app-built'); // the widget's synchronous start-up is done
+  const ready = Promise.all([started, clips.start()]).then(async ([asked]) => {
     predictor.clipChanged(motion);
+    if (holdPlayback && !(options.autoPredict && motion && predictor.manifest)) {
+      holdPlayback = false; // no first futures follow
+      if (motion) player.play();
+    }
     const clip = linkParams.get('clip');
     if (clip && motion && motion.name !== clip) {
       banner.show(`This link asks for the clip '${clip}', which this site does not have; showing ${motion.name} instead.`, 'warning', 'link-clip');
@@ -492,7 +509,12 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     }
     if (options.autoPredict && motion && predictor.manifest) {
       predictor.setLive(true);
-      await predictor.predict();
+      try {
+        await predictor.predict();
+      } finally {
+        holdPlayback = false;
+        if (!predictor.last && options.autoplay && motion) player.play(); // no futures: the clip plays
+      }
       if (!options.autoplay && predictor.last) { player.pause(); player.seek(Math.floor(player.state.length / 2)); }
       // what the link's stage showed: its selected sample and its paused frame
       if (predictor.last && asked?.view) {

@@ -179,18 +179,26 @@ export class PredictController {
 
   /** Start loading the chosen model while the clip loads, when a prediction follows at once: the
    * worker's wasm start-up and session creation then overlap the page's own loading. */
-  warm(): void {
-    if (!this.inputs || !this.manifest) return;
-    const entry = this.inputs.model();
+  warm(early?: { manifest: Manifest; model: string }): void {
+    // `early`: the manifest and the link's model, before start() has built the panels (the worker's
+    // onnxruntime start-up then overlaps that too)
+    const manifest = early?.manifest ?? this.manifest;
+    const id = early?.model ?? this.inputs?.model().id;
+    if (!manifest || id === undefined || this.warming.has(id)) return;
     // Nothing is reported here (no worker, a failed load): the prediction that follows tries again
     // and reports it.
     try {
-      this.client ??= this.o.client(this.manifest);
+      this.client ??= this.o.client(manifest);
     } catch {
       return;
     }
-    void this.client.load(entry.id).then(() => { this.loaded.add(entry.id); performance.mark('mf:model-loaded'); }, () => undefined);
+    this.warming.add(id);
+    void this.client.load(id).then(() => { this.loaded.add(id); performance.mark('mf:model-loaded'); },
+      () => { this.warming.delete(id); });
   }
+
+  /** Models warm() has asked the worker to load. */
+  private warming = new Set<string>();
 
   /** The current inputs, or null before the manifest is in. */
   inputsNow(): PredictInputs | null {
@@ -479,6 +487,7 @@ export class PredictController {
     this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, readout, compare: all };
     this.shownKey = this.keyOf(entry.id, inputs.seed, start, inputs.controls, m);
     this.selected = null;
+    performance.mark('mf:show-start');
     this.o.beforeShow?.(p.k);
     if (all) {
       // compare mode: one row per method, the futures of all starting on the same timeline frame
@@ -493,6 +502,7 @@ export class PredictController {
     }
     this.o.view.setSelected(null);
     this.o.onCompare?.(all ?? null);
+    performance.mark('mf:tracks-set');
     const shown = this.last;
     // The list, the numbers and the statuses follow once the stage has drawn the new futures, and the
     // futures play once all is in: at K = 50 building everything in one task, with playback drawing
@@ -500,6 +510,8 @@ export class PredictController {
     const ticket = this.ticket;
     return afterNextFrame().then(afterNextFrame).then(() => {
       if (this.last !== shown) return undefined; // a newer result took the stage
+      // the stage drew its first frame with these tracks in the frame before (Stage.invalidateAfterNextFrame)
+      performance.mark('mf:futures-drawn'); // make bench's navigation -> futures drawn
       this.describeShown(shown, m.fps, n, entry, ticket === this.ticket);
       // and the statuses after the list's own frame, for the same reason
       return afterNextFrame().then(() => { if (this.last === shown) this.settle(shown, entry, ticket === this.ticket); });
