@@ -101,17 +101,19 @@ ROWS: list[Row] = [
         config="ablations/lcp_paper_loss.json", group="lcp_vae", tables=HELD_OUT,
         note="the served model's labelled variant terms (export/ops/speed_term.py, skate_term.py) off"),
     # Keyposes (issue 8). The paper's tables interpolate linearly (refine off); the site serves the refinement.
-    Row("keyposes", "Keyposes (T = 0.3, refined: served)", config="keyposes.json",
-        controls={"temperature": 0.3, "refine": True}, group="keyposes"),
+    # The served temperature is 0.6 (configs/keyposes.json "sampling", chosen on training people; the
+    # paper's 0.3 stays in the linear rows its tables compare).
+    Row("keyposes", "Keyposes (T = 0.6, refined: served)", config="keyposes.json",
+        controls={"temperature": 0.6, "refine": True}, group="keyposes"),
     *[Row(f"keyposes-t{t}", f"Keyposes (T = {t}, linear)", config="keyposes.json",
           controls={"temperature": t, "refine": False}, group="keyposes",
           tables=(*HELD_OUT, LONG) if t == 0.3 else (LONG,)) for t in KP_TEMPERATURES],
-    Row("keyposes-max-rule", "Keyposes (T = 0.3, refined), max-error extraction", config="keyposes.json",
-        controls={"temperature": 0.3, "refine": True}, group="keyposes", extract="max", tables=(*HELD_OUT, LONG),
+    Row("keyposes-max-rule", "Keyposes (T = 0.6, refined), max-error extraction", config="keyposes.json",
+        controls={"temperature": 0.6, "refine": True}, group="keyposes", extract="max", tables=(*HELD_OUT, LONG),
         note="evaluation variant: the history's keyposes by the authors' code's rule (a segment splits until its "
              "largest error is below the threshold), the served model otherwise"),
-    Row("keyposes-no-shape", "Keyposes w/o shape terms (T = 0.3, refined)", config="ablations/keyposes_no_shape.json",
-        controls={"temperature": 0.3, "refine": True}, group="keyposes", tables=(*HELD_OUT, LONG)),
+    Row("keyposes-no-shape", "Keyposes w/o shape terms (T = 0.6, refined)", config="ablations/keyposes_no_shape.json",
+        controls={"temperature": 0.6, "refine": True}, group="keyposes", tables=(*HELD_OUT, LONG)),
     Row("keyposes-32-clusters", "Keyposes, 32 clusters (T = 0.3, linear)", config="ablations/keyposes_32_clusters.json",
         controls={"temperature": 0.3, "refine": False}, group="keyposes", tables=(LONG,)),
     Row("keyposes-noise-1x", "Keyposes, lighter label noise (T = 0.3, linear)",
