@@ -212,12 +212,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     parts.toolbar.style.setProperty('--right', right);
   };
   /** The export's last "Saved …" belongs to what was on stage then: a new clip or prediction clears it. */
-  const clearExportStatus = () => {
-    const line = parts.panel.querySelector('.export-status');
-    if (line) line.textContent = '';
-    o.status('exportStatus', undefined);
-    o.status('exportFile', undefined);
-  };
+  const clearExportStatus = () => exporter.clearStatus();
   const rangeNotice = mountRangeNotice(parts.notice);
   // A refusal's notice sits where the range notice does (they never show together).
   const refusalNotice = mountRefusalNotice(parts.notice.parentElement ?? parts.notice, (start) => {

@@ -34,6 +34,8 @@ export interface ExportPanel {
   refresh(): void;
   /** Export in one format (what the buttons do); resolves to the file name, or null on failure. */
   exportAs(format: ExportFormat): Promise<string | null>;
+  /** Forget the last "Saved …": it belonged to what was on stage then. */
+  clearStatus(): void;
 }
 
 const FORMATS: { id: ExportFormat; label: string; title: string; type: string }[] = [
@@ -101,5 +103,11 @@ export function mountExportPanel(container: HTMLElement, options: ExportPanelOpt
 
   buttons.forEach((b, i) => b.addEventListener('click', () => { void exportAs(FORMATS[i].id); }));
   refresh();
-  return { root: container, refresh, exportAs };
+  const clearStatus = () => {
+    status.textContent = '';
+    options.status?.('exportStatus', undefined);
+    options.status?.('exportFile', undefined);
+  };
+
+  return { root: container, refresh, exportAs, clearStatus };
 }
