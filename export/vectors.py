@@ -20,6 +20,7 @@ from .vectors_lcp import lcp_e2e_cases, lcp_record, lcp_vector
 from .vectors_asf import asf_vector
 from .vectors_guard import bones_vector, envelope_vector, guard_vector
 from .vectors_metrics import metrics_vector
+from .vectors_foot_plant import foot_plant_vector
 from .vectors_readout import readout_vector
 from .vectors_record import record
 from .vectors_retarget import retarget_vector
@@ -164,6 +165,7 @@ FAMILIES: dict[str, Callable[[], dict]] = {
     "bones": _op_family(bones_vector),
     "envelope": _op_family(envelope_vector),
     "guard": _op_family(guard_vector),
+    "foot_plant": _op_family(foot_plant_vector),
     "readout": readout_vector,
     "e2e": e2e_vector,
 }

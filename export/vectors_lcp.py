@@ -42,7 +42,7 @@ def lcp_vector() -> dict:
              for seed, count in [(0, 3), (42, 50), (4294967295, 5)]]
     return {"about": "LCP-VAE predictor arithmetic: condition outputs + K + sigma scale + seed -> z and c, "
                      "sample i drawing from streams(seed, K)[i] (draw order in export/sample/lcp_vae.py); "
-                     "seed + count -> each stream's first 4 u32 draws (exact); futures -> diversity (WAT Eq. 10)",
+                     "seed + count -> each stream's first 4 u32 draws (exact); futures -> diversity (WAT Eq. 10 on root-relative poses)",
             "sampling": sampling, "streams": first, "diversity": div}
 
 

@@ -304,7 +304,7 @@ def predict_model(run: ModelRun, row: Row, tab: Table, k: int, sampling_seed: in
     for w, a in tab.items:
         win = tab.wins[w]
         req = Request(k=k if "k" in ctl else 1, seed=request_seed(sampling_seed, w, actions.index(a)),
-                      actions=[a] if "actions" in ctl else [], horizon_frames=t, controls=dict(row.controls))
+                      actions=[a] if "actions" in ctl else [], horizon_frames=t, controls=dict(row.controls), plant_feet=row.plant_feet)
         try:
             pred = run.predictor.predict(win.history[-n:], req)
         except PredictError as e:

@@ -563,7 +563,11 @@ def _variants(doc: dict) -> list[str]:
     for e in v.get("eq4", []):
         lines.append(f"  - `{e['table']}`: {'the same order' if e['same_order'] else 'different orders'} "
                      f"(printed: {', '.join(e['printed'])}; code: {', '.join(e['code'])})")
-    lines += ["- **Keyposes' interpolation**: the paper's tables use linear interpolation between keyposes (rows "
+    lines += ["- **Planted feet** (ours, every model): the site and the served rows re-derive the root's horizontal "
+              "travel while a foot is on the floor, so that foot stays put in the world (export/ops/foot_plant.py; "
+              "heights, root-relative poses and lengths unchanged). Rows \"own root (feet not planted)\" keep each "
+              "method's own root travel, on the same windows.",
+              "- **Keyposes' interpolation**: the paper's tables use linear interpolation between keyposes (rows "
               "\"linear\", the claims' rows); the site serves the refinement network (row \"refined: served\").",
               f"- **Keypose extraction**: the paper's text stops splitting a segment on the mean error (served and "
               f"trained); the authors' code stops on the maximum error (row \"max-error extraction\", an evaluation "

@@ -35,6 +35,7 @@ class Row:
     history: int | None = None           # baselines: history frames it reads (at most, for the long variant)
     parent: str | None = None            # projected rows: the raw row
     extract: str = "mean"                # Keyposes: the keypose extraction rule at prediction (ops/keyposes.py)
+    plant_feet: bool = True              # models: the feet on the floor carry the root (ops/foot_plant.py)
 
 
 HELD_OUT = ("heldout_1s", "heldout_2s")
@@ -119,6 +120,18 @@ ROWS: list[Row] = [
     Row("keyposes-noise-1x", "Keyposes, lighter label noise (T = 0.3, linear)",
         config="ablations/keyposes_noise_1x.json", controls={"temperature": 0.3, "refine": False}, group="keyposes",
         tables=(LONG,)),
+    # Issue 28: the served rows plant their feet as the site does (ops/foot_plant.py, a post-process of ours);
+    # these rows keep each method's own root travel, on the same windows.
+    *[Row(f"{p}-own-root", f"{label}, own root (feet not planted)", config=cfg, controls=ctl, group=g,
+          plant_feet=False, tables=("heldout_2s",),
+          note="the served model with ops/foot_plant.py off: the root travels as the method predicts it")
+      for p, label, cfg, ctl, g in (
+          ("regression-gru", "Regression GRU", "regression.json", {}, "baselines"),
+          ("wat-rnn", "WAT (RNN)", "wat_rnn.json", {}, "wat"),
+          ("wat-transformer", "WAT (Transformer)", "wat_transformer.json", {}, "wat"),
+          ("lcp-vae", "LCP-VAE", "lcp_vae.json", {}, "lcp_vae"),
+          ("keyposes", "Keyposes (T = 0.6, refined)", "keyposes.json", {"temperature": 0.6, "refine": True},
+           "keyposes"))],
     # Issue 19: raw outputs first, then the served models' futures bone-projected, labelled as such.
     *[Row(f"{p}-projected", f"{label}, bone-projected (extra)", kind="projected", parent=p, group=g,
           tables=("heldout_2s",), note="the raw row's futures with every bone set to its mean length in the "

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..ops.facing import root_relative, split_root
 from ..rng import Prng, row_normals, streams
 from .canonical import from_canonical, to_canonical
 from .predictor import Predictor
@@ -55,11 +56,13 @@ def _shift_scale(mu: np.ndarray, sigma: np.ndarray, scale: float, eps: np.ndarra
 
 def diversity(futures: np.ndarray) -> float:
     """Average pairwise distance of K futures [K, T, J, 3] (WAT Eq. 10): over all pairs, the mean
-    over frames of the L2 norm of the whole-pose difference, in metres. 0 for K = 1."""
+    over frames of the L2 norm of the whole-pose difference, in metres, on root-relative poses (each
+    frame's root x and z subtracted, as DLow's APD): where the root stands is not pose diversity, and
+    planted feet (ops/foot_plant.py) move only the root path. 0 for K = 1."""
     k = len(futures)
     if k < 2:
         return 0.0
-    flat = np.asarray(futures, dtype=np.float64).reshape(k, futures.shape[1], -1)
+    flat = root_relative(split_root(futures)).reshape(k, futures.shape[1], -1)
     total = 0.0
     for i in range(k):
         for j in range(i + 1, k):

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..manifest import entry as find_entry, read_manifest
 from ..paths import MODELS_DIR
+from ..ops.foot_plant import plant_feet
 from .canonical import SCALE_LIMITS, SCALE_TOLERANCE, body_scale, rescale, scale_anchor
 from .guard import cut_out_of_bounds
 from .history import refusal_with_warnings, warnings_for
@@ -27,7 +28,8 @@ class Predictor:
 
     def predict(self, history: np.ndarray, req: Request) -> Prediction:
         """history [frames, J, 3] in the world frame -> K futures in the same frame, each cut at its
-        first out-of-bounds frame (guard.py), with warnings for the history (history.py): outside the
+        first out-of-bounds frame (guard.py), the root carried by the feet on the floor unless
+        req.plant_feet is False (ops/foot_plant.py), with warnings for the history (history.py): outside the
         training envelope, reflected, still, or at another body size. A body at another size is brought
         to the model's size for predicting and the futures are scaled back (canonical.py)."""
         joints = len(self.manifest["skeleton"]["joints"])
@@ -47,6 +49,8 @@ class Predictor:
             pred = self._predict(work, req)
         except PredictError as e:   # a refusal leads with the warning that most likely caused it
             raise PredictError(refusal_with_warnings(str(e), warnings)) from None
+        if req.plant_feet:               # feet on the floor carry the root (ops/foot_plant.py)
+            pred.futures = plant_feet(work[-1], pred.futures).astype(np.float32)
         cut_out_of_bounds(pred.futures, pred.lengths, pred.samples, work[-n:])
         if pred.ghosts is not None:      # keypose ghosts past a cut go with it
             for i, s in enumerate(pred.samples):

@@ -25,16 +25,21 @@ class Request:
     actions: list[str] = field(default_factory=list)
     horizon_frames: int | None = None
     controls: dict = field(default_factory=dict)
+    # Feet on the floor carry the root (ops/foot_plant.py); False keeps the method's own root travel.
+    plant_feet: bool = True
 
     @classmethod
     def from_json(cls, doc: dict) -> "Request":
         return cls(k=int(doc.get("k", 1)), seed=int(doc.get("seed", 0)), actions=list(doc.get("actions", [])),
-                   horizon_frames=doc.get("horizon_frames"), controls=dict(doc.get("controls", {})))
+                   horizon_frames=doc.get("horizon_frames"), controls=dict(doc.get("controls", {})),
+                   plant_feet=doc.get("plant_feet", True))
 
     def to_json(self) -> dict:
         out = {"k": self.k, "seed": self.seed, "actions": self.actions, "controls": self.controls}
         if self.horizon_frames is not None:
             out["horizon_frames"] = self.horizon_frames
+        if self.plant_feet is not True:
+            out["plant_feet"] = self.plant_feet
         return out
 
 
@@ -107,6 +112,8 @@ def check_request(req: Request, entry: dict, actions: list[str], fps: float = 30
         lo, hi = (round(spec["min"] * fps), round(spec["max"] * fps)) if spec else (1, entry["params"]["future_frames"])
         if not (isinstance(req.horizon_frames, int) and lo <= req.horizon_frames <= hi):
             raise PredictError(f"the horizon must be {lo} to {hi} frames, got {req.horizon_frames}")
+    if not isinstance(req.plant_feet, bool):
+        raise PredictError(f"plant_feet must be true or false, got {req.plant_feet!r}")
     for cid, value in req.controls.items():
         spec = controls.get(cid)
         if cid in REQUEST_FIELDS:

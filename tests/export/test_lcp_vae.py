@@ -146,11 +146,15 @@ def test_sampling_follows_the_documented_draw_order():
         np.testing.assert_array_equal(z[i], (s * eps).astype(np.float32))
 
 
-def test_diversity_is_eq10_of_wat():
+def test_diversity_is_eq10_of_wat_on_root_relative_poses():
     rng = np.random.default_rng(0)
     f = rng.normal(size=(4, 5, 18, 3)).astype(np.float32)
-    pairs = [np.linalg.norm((f[i] - f[j]).reshape(5, -1), axis=1).mean() for i in range(4) for j in range(4) if i != j]
+    rr = f.astype(np.float64) - f[:, :, :1].astype(np.float64) * np.array([1.0, 0.0, 1.0])
+    pairs = [np.linalg.norm((rr[i] - rr[j]).reshape(5, -1), axis=1).mean() for i in range(4) for j in range(4) if i != j]
     assert diversity(f) == pytest.approx(np.mean(pairs), rel=1e-9)
+    moved = f.copy()
+    moved[..., [0, 2]] += rng.normal(size=(4, 5, 1, 2)).astype(np.float32)   # root paths apart, same poses
+    assert diversity(moved) == pytest.approx(diversity(f), rel=1e-5)
     assert diversity(f[:1]) == 0.0
     assert diversity(np.repeat(f[:1], 3, 0)) == 0.0
 

@@ -9,7 +9,7 @@ import { KeyposesPredictor } from '../../web/src/predictor/keyposes';
 import { OrtRunner, type OrtModule } from '../../web/src/predictor/ort-runner';
 import { PredictError, type History } from '../../web/src/predictor/types';
 import { PACE_RANGE, pace, travel } from '../../web/src/sampling/keyposes';
-import { loadManifest } from './helpers/models';
+import { loadManifest, nodePredictor } from './helpers/models';
 import { readVector, tolerance, worstDiff } from './helpers/vectors';
 
 const modelsDir = new URL('../../public/models/', import.meta.url);
@@ -51,7 +51,8 @@ describe.runIf(entry)('Keyposes predictor (TypeScript, committed model)', () => 
   for (const c of cases) {
     it(`${c.clip}@${c.start}: labels and marks exactly, positions within the model's tolerance`, async () => {
       expect(entry!.hash).toBe(c.model_hash);
-      const pred = await predictor().predict(
+      // through the whole predictor (createCheckedPredictor): the vector's futures have planted feet
+      const pred = await nodePredictor(manifest, entry!.id).predict(
         { positions: Float32Array.from(c.history.flat(2)), frames: c.history.length, joints: J },
         { k: c.request.k, seed: c.request.seed, horizonFrames: c.request.horizon_frames, controls: c.request.controls },
       );

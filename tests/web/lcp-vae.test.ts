@@ -78,7 +78,8 @@ if (served.length) describe('served LCP-VAE model in Node', () => {
     const [readout] = pred.readouts!;
     expect(readout.label).toBe('diversity');
     expect(readout.unit).toBe('m');
-    expect(readout.value).toBeCloseTo(diversity(pred.futures, 10, pred.frames, J * 3), 9);
+    // root-relative, so planting the feet after the read-out changes it only by float32 rounding
+    expect(readout.value).toBeCloseTo(diversity(pred.futures, 10, pred.frames, J * 3), 7);
     expect(readout.value).toBeGreaterThan(0);
   });
 

@@ -76,7 +76,8 @@ function stateFor(manifest: Manifest): fc.Arbitrary<ShareState> {
     start: fc.nat({ max: 100_000 }),
     seed: fc.integer({ min: 0, max: MAX_SEED }),
     controls: fc.record(Object.fromEntries(entry.controls.map((c) => [c.id, controlValue(c, manifest.actions)]))),
-  }).map((s): ShareState => ({ ...s, model: entry.id, hash: shortHash(entry.hash) })));
+    own: fc.boolean(),
+  }).map(({ own, ...s }): ShareState => ({ ...s, model: entry.id, hash: shortHash(entry.hash), ...(own ? { feet: 'own' as const } : {}) })));
 }
 
 const actionName = fc.stringMatching(/^[a-z][a-z_]{0,9}$/);
@@ -120,6 +121,21 @@ describe('URL state round trip', () => {
       expect(problems).toEqual([]);
       expect(back).toEqual(state);
     }), { numRuns: 200 });
+  });
+});
+
+describe('the feet option', () => {
+  const entry = served.models[0];
+  it('is written only for the method\'s own root, and a bad value is named and planted', () => {
+    const state: ShareState = {
+      version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'cmu_10_04', start: 0, seed: 7,
+      controls: Object.fromEntries(entry.controls.map((c) => [c.id, c.default as ControlValue])),
+    };
+    expect(encodeState(state, served).some(([k]) => k === 'feet')).toBe(false);
+    expect(encodeState({ ...state, feet: 'own' }, served)).toContainEqual(['feet', 'own']);
+    const { state: back, problems } = decodeState([['model', entry.id], ['feet', 'sliding']], served, '0.1.0');
+    expect(back.feet).toBeUndefined();
+    expect(problems.map((p) => p.text)).toEqual([expect.stringContaining("The feet option must be planted or own, got 'sliding'")]);
   });
 });
 

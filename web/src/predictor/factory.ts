@@ -1,8 +1,10 @@
 // The one place that knows which predictor runs which method; everything else sees Predictor.
 // Every method's predictor is wrapped in the same guard (twin of export/sample/predictor.py's
-// predict): every future is cut at its first out-of-bounds frame, so no method can draw an exploding
+// predict): the feet on the floor carry the root (foot-plant.ts) and every future is cut at its first
+// out-of-bounds frame, so no method can draw an exploding
 // figure. The history's warnings, its scale and the refusals' order are history.ts's.
 import { DirectPredictor } from './direct';
+import { plantFeet } from './foot-plant';
 import { cutOutOfBounds } from './guard';
 import { KeyposesPredictor } from './keyposes';
 import { LcpVaePredictor } from './lcp-vae';
@@ -47,7 +49,10 @@ class Guarded implements Predictor {
     const j = skeleton.joints.length;
     checkHistory(history, n, j);
     const pred = await this.inner.predict(history, req, isCancelled);
-    cutOutOfBounds(pred, history.positions.subarray((history.frames - n) * j * 3), n, skeleton);
+    const recent = history.positions.subarray((history.frames - n) * j * 3);
+    // feet on the floor carry the root (foot-plant.ts), then the bounds are checked on what is drawn
+    if (req.plantFeet !== false) plantFeet(recent.subarray((n - 1) * j * 3), pred.futures, pred.k, pred.frames, skeleton);
+    cutOutOfBounds(pred, recent, n, skeleton);
     pred.warnings = [];   // the history's warnings are history.ts's (createCheckedPredictor)
     return pred;
   }

@@ -25,6 +25,8 @@ export interface PredictRequest {
   actions?: string[];
   horizonFrames?: number;
   controls?: Record<string, number | boolean>;
+  /** Feet on the floor carry the root (foot-plant.ts); false keeps the method's own root travel. */
+  plantFeet?: boolean;
 }
 
 export interface Segment {

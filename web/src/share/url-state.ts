@@ -8,6 +8,7 @@
 //   &sample=N &frame=F &layout=overlay|side   what the stage shows of it (each optional): the selected
 //   sample as the labels number it (#N, from 1), the paused timeline frame, the layout
 //   &compare=ID,ID[,ID]   compare mode (ui/compare.ts): every model on stage, the link's model first
+//   &feet=own   the method's own root travel (absent: planted feet, predictor/foot-plant.ts)
 import type { ControlSpec, Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import type { ControlValue } from '../ui/controls';
@@ -39,7 +40,13 @@ export interface ShareState {
   view?: StageView;
   /** Compare mode: every model on stage, `model` first (absent: one model). */
   compare?: string[];
+  /** 'own': the method's own root travel; absent: feet on the floor carry the root. */
+  feet?: FeetMode;
 }
+
+/** How the root travels: planted feet (the site's default, predictor/foot-plant.ts) or the method's own. */
+export type FeetMode = 'planted' | 'own';
+export const FEET_MODES: readonly FeetMode[] = ['planted', 'own'];
 
 export const LAYOUTS: readonly LayoutMode[] = ['overlay', 'side'];
 
@@ -72,6 +79,7 @@ export interface LinkState {
   view?: StageView;
   /** Compare mode: the models on stage, `model` first. */
   compare?: string[];
+  feet?: FeetMode;
 }
 
 export interface Problem {
@@ -81,7 +89,7 @@ export interface Problem {
 
 export const HASH_CHARS = 12;
 /** Names of the state's own fields, and of the view options that share the same parameter space. */
-export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout', 'compare'] as const;
+export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout', 'compare', 'feet'] as const;
 export const VIEW_KEYS = ['controls', 'autoplay', 'predict', 'page'] as const;
 const RESERVED = new Set<string>([...STATE_KEYS, ...VIEW_KEYS]);
 /** The action-sequence composer's length when the manifest gives no max_length (controls.ts). */
@@ -214,6 +222,7 @@ export function encodeState(state: ShareState, manifest: Manifest): [string, str
   if (v.frame !== undefined) out.push(['frame', String(v.frame)]);
   if (v.layout !== undefined) out.push(['layout', v.layout]);
   if (state.compare?.length) out.push(['compare', state.compare.join(',')]);
+  if (state.feet === 'own') out.push(['feet', 'own']);
   return out;
 }
 
@@ -333,6 +342,12 @@ export function decodeState(params: Iterable<[string, string]>, manifest: Manife
       const ids = [entry.id, ...parsed.ids.filter((id) => id !== entry!.id)].slice(0, MAX_COMPARED);
       state.compare = ids;
     }
+  }
+
+  const feet = q.get('feet');
+  if (feet !== undefined) {
+    if ((FEET_MODES as readonly string[]).includes(feet)) state.feet = feet as FeetMode;
+    else warn(`The feet option must be ${FEET_MODES.join(' or ')}, got '${feet}'; the feet are planted.`);
   }
 
   const known = new Set<string>([...RESERVED, ...entry.controls.map((c) => c.id)]);

@@ -380,6 +380,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     const state: ShareState = {
       version: SITE_VERSION, model: inputs.model.id, hash: shortHash(inputs.model.hash), clip: motion.name,
       start: inputs.start, seed: inputs.seed, controls: inputs.controls, source, view: stageView(),
+      ...(inputs.plantFeet ? {} : { feet: 'own' as const }),
     };
     const companions = compare?.chosen() ?? [];
     if (companions.length) state.compare = [inputs.model.id, ...companions];
@@ -464,7 +465,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       compare = mountComparePanel(addSection(panel, 'compare', 'Compare methods', 'clip').body, predictor.manifest.models,
         predictor.inputsNow()!.model.id, () => { refreshShare(); predictor.changed(); });
     }
-    if (asked) predictor.setInputs(asked);
+    if (asked) predictor.setInputs({ ...asked, plantFeet: asked.feet !== 'own' });
     if (asked?.compare) { compare?.setPrimary(asked.model); compare?.set(asked.compare); }
     if (asked?.view?.layout) { layoutChosen = true; setLayout(asked.view.layout); }
     if (options.autoPredict) predictor.warm();

@@ -79,6 +79,8 @@ export interface PredictInputs {
   seed: number;
   start: number;
   controls: Record<string, ControlValue>;
+  /** Feet on the floor carry the root (predictor/foot-plant.ts); false: the method's own root. */
+  plantFeet: boolean;
 }
 
 /** What is on stage: the prediction and everything it was made from. */
@@ -203,12 +205,14 @@ export class PredictController {
   /** The current inputs, or null before the manifest is in. */
   inputsNow(): PredictInputs | null {
     if (!this.inputs) return null;
-    return { model: this.inputs.model(), seed: this.inputs.seed(), start: this.inputs.history.start(), controls: this.inputs.controls().values() };
+    return { model: this.inputs.model(), seed: this.inputs.seed(), start: this.inputs.history.start(), controls: this.inputs.controls().values(),
+      plantFeet: this.inputs.plantFeet() };
   }
 
   /** Set inputs (a permalink's); unknown models are left to the caller to report. Does not predict. */
-  setInputs(s: { model?: string; seed?: number; controls?: Record<string, ControlValue> }): void {
+  setInputs(s: { model?: string; seed?: number; controls?: Record<string, ControlValue>; plantFeet?: boolean }): void {
     if (!this.inputs) return;
+    if (s.plantFeet !== undefined) this.inputs.setPlantFeet(s.plantFeet);
     if (s.model !== undefined) this.inputs.selectModel(s.model);
     if (s.seed !== undefined) this.inputs.setSeed(s.seed);
     for (const [id, v] of Object.entries(s.controls ?? {})) this.inputs.controls().set(id, v);
@@ -307,12 +311,12 @@ export class PredictController {
     const inputs = this.inputsNow();
     const m = this.o.currentClip();
     if (!inputs || !m) return null;
-    return this.keyOf(inputs.model.id, inputs.seed, inputs.start, inputs.controls, m);
+    return this.keyOf(inputs.model.id, inputs.seed, inputs.start, inputs.controls, m, inputs.plantFeet);
   }
 
-  private keyOf(model: string, seed: number, start: number, controls: Record<string, ControlValue>, m: Motion): string {
+  private keyOf(model: string, seed: number, start: number, controls: Record<string, ControlValue>, m: Motion, plantFeet = true): string {
     const compare = this.o.compare?.().map((e) => e.id) ?? [];
-    return JSON.stringify([model, seed, start, controls, m.name, m.frames, m.origin?.file ?? null, compare]);
+    return JSON.stringify([model, seed, start, controls, m.name, m.frames, m.origin?.file ?? null, compare, plantFeet]);
   }
 
   async predict(): Promise<void> {
@@ -332,7 +336,7 @@ export class PredictController {
       this.o.stageStatus?.(text, 'error');
       return;
     }
-    const request = buildRequest(entry, inputs.controls, inputs.seed, this.manifest.fps);
+    const request = buildRequest(entry, inputs.controls, inputs.seed, this.manifest.fps, inputs.plantFeet);
     const history = { positions: clipWindow(m, start, n), frames: n, joints: m.joints };
     try {
       this.client ??= this.o.client(this.manifest);
@@ -386,7 +390,7 @@ export class PredictController {
       const history = { positions: clipWindow(m, from, frames), frames, joints: m.joints };
       try {
         const r = await this.client!.predict(`${this.o.viewId}:compare:${entry.id}`, entry.id, history,
-          buildRequest(entry, controls, inputs.seed, fps), undefined, { truth: truthAfter(m, from, frames), skeleton: m.skeleton });
+          buildRequest(entry, controls, inputs.seed, fps, inputs.plantFeet), undefined, { truth: truthAfter(m, from, frames), skeleton: m.skeleton });
         this.loaded.add(entry.id);
         return { entry, start: from, controls, prediction: r.prediction, readout: r.readout ?? null };
       } catch (err) {

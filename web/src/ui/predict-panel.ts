@@ -1,6 +1,7 @@
 // The predictor's inputs: model, history window, seed, the model's own controls, and Predict.
 // K keeps its value across model switches (clamped to the new model's range), so the first view's
-// K = 5 stays; a deterministic model (no K) disables the seed and says why.
+// K = 5 stays; a deterministic model (no K) disables the seed and says why. "Plant feet" is the
+// site's, not a model's (predictor/foot-plant.ts): on, the feet on the floor carry the root.
 import type { Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import { mountControls, type ControlsView } from './controls';
@@ -12,6 +13,9 @@ export interface PredictPanel {
   history: HistoryPicker;
   controls(): ControlsView;
   seed(): number;
+  /** Feet on the floor carry the root (predictor/foot-plant.ts); off: the method's own root travel. */
+  plantFeet(): boolean;
+  setPlantFeet(on: boolean): void;
   /** Choose a model by id (as if picked in the list); false when there is none. */
   selectModel(id: string): boolean;
   setSeed(seed: number): void;
@@ -32,6 +36,12 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
   const dice = el('button', { type: 'button', class: 'text-button', id: 'new-seed', title: 'A new random seed' }, 'New seed');
   const seedNote = el('p', { class: 'muted control-help seed-note', id: 'seed-note', hidden: true });
   const controlsBox = el('div', {});
+  const feet = el('input', { type: 'checkbox', id: 'plant-feet', checked: true, 'aria-describedby': 'plant-feet-help' });
+  const feetRow = el('div', { class: 'control-row' },
+    el('label', { class: 'checkbox-label' }, feet, ' Plant feet'),
+    el('p', { class: 'muted control-help', id: 'plant-feet-help' },
+      'A foot on the floor stays put and carries the body (a post-process of this site). Off: the root travels as the method predicts it.'));
+  feet.addEventListener('change', () => handlers.onChange());
   const predict = el('button', { type: 'button', class: 'primary-button', id: 'predict' }, 'Predict');
   const progress = el('progress', { class: 'load-progress', max: 1, hidden: true });
   const status = el('p', { class: 'muted predict-status', role: 'status', 'aria-live': 'polite' });
@@ -71,6 +81,7 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
     history.root,
     el('div', { class: 'control-row seed-row' }, el('label', { for: 'seed' }, 'Seed'), el('div', { class: 'range-row' }, seedInput, dice), seedNote),
     controlsBox,
+    feetRow,
     el('div', { class: 'predict-row' }, predict, el('span', { class: 'muted' }, 'or press P; any change predicts again')),
     progress, status,
   );
@@ -80,6 +91,8 @@ export function mountPredictPanel(container: HTMLElement, manifest: Manifest, in
     history,
     controls: () => controls,
     seed: () => Number(seedInput.value),
+    plantFeet: () => feet.checked,
+    setPlantFeet(on) { feet.checked = on; },
     selectModel(id) {
       if (!models.some((m) => m.id === id)) return false;
       if (select.value !== id) { select.value = id; showModel(); }

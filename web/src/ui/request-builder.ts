@@ -1,11 +1,13 @@
 // From control values to a PredictRequest: k, actions and horizon are request fields; the rest
-// are the model's own controls.
+// are the model's own controls; plantFeet is the site's (predictor/foot-plant.ts), sent only when off.
 import type { ModelEntry } from '../contract/types';
 import type { PredictRequest } from '../predictor/types';
 import type { ControlValue } from './controls';
 
-export function buildRequest(entry: ModelEntry, values: Record<string, ControlValue>, seed: number, fps: number): PredictRequest {
+export function buildRequest(entry: ModelEntry, values: Record<string, ControlValue>, seed: number, fps: number,
+  plantFeet = true): PredictRequest {
   const req: PredictRequest = { k: 1, seed, controls: {} };
+  if (!plantFeet) req.plantFeet = false;
   for (const spec of entry.controls) {
     const v = values[spec.id];
     if (v === undefined) continue;
