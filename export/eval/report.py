@@ -251,9 +251,11 @@ def _verdicts(doc: dict) -> list[str]:
 # --- motion realism (Evaluation v3, items 2 and 5) --------------------------------------------------
 
 def realism_rows(doc: dict, t: dict) -> list[dict]:
-    """The rows a realism table shows: the ground truth, the baselines and the served models."""
+    """The rows a realism table shows: the ground truth, the baselines and the served models, each also
+    with its own root where the table has that row (feet not planted, rows.py)."""
     return [r for r in t["rows"] if r.get("values") and not r.get("skipped")
-            and (r["kind"] in ("oracle", "baseline") or (r["kind"] == "model" and r["id"] in doc["models"]))]
+            and (r["kind"] in ("oracle", "baseline") or (r["kind"] == "model" and (
+                r["id"] in doc["models"] or r["id"].removesuffix("-own-root") in doc["models"])))]
 
 
 def _per_second(t: dict, prefix: str) -> list[str]:

@@ -103,6 +103,26 @@ describe('permalinks', () => {
     expect(await futures(page)).toBe(first);
   });
 
+  it('feet=own arrives as "Plant feet" off: other root paths, the same poses; switching it on brings the futures back', async () => {
+    const own = new URL(page.url());
+    own.searchParams.set('feet', 'own');
+    const heights = () => page.evaluate(() => {
+      const p = window.motionFutures!.predictor.last!.prediction;
+      return Array.from(p.futures.filter((_, i) => i % 3 === 1).slice(0, 3000));
+    });
+    const planted = await heights();
+    await page.goto(own.href);
+    await predicted(page);
+    expect(await page.locator('#plant-feet').isChecked()).toBe(false);
+    expect(new URL(page.url()).searchParams.get('feet')).toBe('own');
+    expect(await futures(page)).not.toBe(first);
+    expect(await heights()).toEqual(planted);          // only where the body stands changes
+    await page.locator('#plant-feet').check();         // any change predicts again
+    await expect.poll(() => futures(page), { timeout: 60_000 }).toBe(first);
+    await page.waitForFunction(() => !new URL(location.href).searchParams.has('feet'));
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
   it('"Copy link" copies the permalink, which opens the same futures in a new tab', async () => {
     await page.getByTestId('copy-link').click();
     await expect.poll(() => page.getByTestId('share-status').textContent()).toBe('Link copied.');

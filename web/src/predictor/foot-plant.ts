@@ -1,14 +1,22 @@
 // Planted feet, twin of export/ops/foot_plant.py: the root's horizontal travel re-derived from the
 // feet on the floor, so a foot in contact stays where it is in the world while the body passes over
-// it. Per step t -> t+1 each foot joint (ankles, toes) weighs w = min(c(y_t), c(y_t+1)), c a ramp
-// from 1 at FULL to 0 at NONE (continuous, so float32 differences between runtimes cannot flip a
-// whole root path); the root's step becomes (1 - a) * the method's + a * the weighted opposite of the
+// it. Per step t -> t+1 each foot joint (ankles, toes) weighs w = min(c(y_t), c(y_t+1)) * g(s), c a
+// ramp from 1 at FULL to 0 at NONE, g one from 1 at SLOW to 0 at SLIDING of the joint's world speed
+// under the method's root (a foot swinging low is not on the floor; continuous, so float32
+// differences between runtimes cannot flip a whole root path); the root's step becomes (1 - a) * the method's + a * the weighted opposite of the
 // feet's steps relative to the root, a = the largest weight. Heights and root-relative poses stay.
 import type { Skeleton } from '../contract/types';
 
 export const FOOT_JOINTS = ['left_ankle', 'left_toe', 'right_ankle', 'right_toe'] as const;
 export const FULL = 0.02;
 export const NONE = 0.04;
+export const SLOW = 1.0;
+export const SLIDING = 2.5;
+const FPS = 30;
+
+export function speedWeight(speed: number): number {
+  return Math.min(1, Math.max(0, (SLIDING - speed) / (SLIDING - SLOW)));
+}
 
 export function contactWeight(height: number): number {
   return Math.min(1, Math.max(0, (NONE - height) / (NONE - FULL)));
@@ -24,6 +32,8 @@ export function plantFeet(present: ArrayLike<number>, futures: Float32Array, k: 
     if (i < 0) throw new Error(`the skeleton has no ${n} joint to plant`);
     return i;
   });
+  const prevX = new Float64Array(idx.length);
+  const prevZ = new Float64Array(idx.length);
   const relX = new Float64Array(idx.length);
   const relZ = new Float64Array(idx.length);
   const weight = new Float64Array(idx.length);
@@ -36,6 +46,8 @@ export function plantFeet(present: ArrayLike<number>, futures: Float32Array, k: 
     let newZ = rootZ;
     for (let f = 0; f < idx.length; f++) {
       const j = idx[f] * 3;
+      prevX[f] = present[j];
+      prevZ[f] = present[j + 2];
       relX[f] = present[j] - rootX;
       relZ[f] = present[j + 2] - rootZ;
       weight[f] = contactWeight(present[j + 1]);
@@ -53,7 +65,9 @@ export function plantFeet(present: ArrayLike<number>, futures: Float32Array, k: 
         const rx = futures[j] - x;
         const rz = futures[j + 2] - z;
         const c = contactWeight(futures[j + 1]);
-        const w = Math.min(weight[f], c);
+        const w = Math.min(weight[f], c) * speedWeight(Math.hypot(futures[j] - prevX[f], futures[j + 2] - prevZ[f]) * FPS);
+        prevX[f] = futures[j];
+        prevZ[f] = futures[j + 2];
         total += w;
         most = Math.max(most, w);
         px -= w * (rx - relX[f]);

@@ -92,6 +92,8 @@ export interface Shown {
   clip: string;
   seed: number;
   controls: Record<string, ControlValue>;
+  /** False: the method's own root travel (feet not planted). */
+  plantFeet?: boolean;
   readout: StageReadout | null;
   /** Compare mode: every row on stage, this prediction's first. */
   compare?: CompareRow[];
@@ -448,14 +450,14 @@ export class PredictController {
   }
 
   /** "WAT (RNN): 5 futures from frames 0–9 of walk_01, seed 1, K = 5, actions = walk." */
-  describe(s: Pick<Shown, 'model' | 'start' | 'clip' | 'seed' | 'controls'> & { prediction?: Prediction }): string {
+  describe(s: Pick<Shown, 'model' | 'start' | 'clip' | 'seed' | 'controls' | 'plantFeet'> & { prediction?: Prediction }): string {
     const entry = this.manifest?.models.find((e) => e.id === s.model);
     if (!entry) return s.model;
     const n = entry.params.history_frames;
     const k = s.prediction?.k ?? Number(s.controls.k ?? 1);
     const controls = describeControls(entry, s.controls);
     const seeded = entry.controls.some((c) => c.id === 'k'); // a deterministic model's futures do not depend on it
-    return `${entry.label}: ${k} ${k === 1 ? 'future' : 'futures'} from frames ${s.start}–${s.start + n - 1} of ${this.o.clipTitle?.(s.clip) ?? s.clip}${seeded ? `, seed ${s.seed}` : ''}${controls ? `, ${controls}` : ''}.`;
+    return `${entry.label}: ${k} ${k === 1 ? 'future' : 'futures'} from frames ${s.start}–${s.start + n - 1} of ${this.o.clipTitle?.(s.clip) ?? s.clip}${seeded ? `, seed ${s.seed}` : ''}${controls ? `, ${controls}` : ''}${s.plantFeet === false ? ', own root (feet not planted)' : ''}.`;
   }
 
   /** The stage no longer shows what the inputs ask for: say so until the new futures are in. */
@@ -466,7 +468,8 @@ export class PredictController {
     this.results?.stale(this.last !== null);
     this.o.compareStale?.(this.last?.compare !== undefined);
     if (!inputs || !m) return;
-    const next = this.describe({ model: inputs.model.id, start: inputs.start, clip: m.name, seed: inputs.seed, controls: inputs.controls });
+    const next = this.describe({ model: inputs.model.id, start: inputs.start, clip: m.name, seed: inputs.seed, controls: inputs.controls,
+      plantFeet: inputs.plantFeet });
     this.o.stageStatus?.(this.last ? `${doing} ${next} (the figures still show the previous futures)` : `${doing} ${next}`, 'busy');
   }
 
@@ -488,7 +491,7 @@ export class PredictController {
       }
     }
     const all = rows ? [{ entry, start, controls: inputs.controls, prediction: p, readout }, ...rows] : undefined;
-    this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, readout, compare: all };
+    this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, plantFeet: inputs.plantFeet, readout, compare: all };
     this.shownKey = this.keyOf(entry.id, inputs.seed, start, inputs.controls, m);
     this.selected = null;
     performance.mark('mf:show-start');
