@@ -87,8 +87,13 @@ class WatMethod(Method):
         # people's 2 s windows (in-sample table, K = 10; 3000-step runs): best-of-10 ADE 0.829 m (kl 1,
         # speed 40, served before) -> 0.681, foot skating 0.36 -> 0.24 m/s, jitter 1.59 -> 1.24; kl 0.1
         # without the speed term 0.662 m but joint speed 0.25 of the truth's in the 2nd second (0.31).
-        # train.steps 3000 (was 8000): trained on to 8000 steps at lr 0.007 the same config fell back to
-        # 0.797 m in-sample with the jitter back at 1.47 (held-out 0.981x zero-velocity against 0.898x).
+        # train.steps 9000 at the paper's lr 0.002 (Table 4; configs/wat_rnn.json), was 3000 at 0.007: the
+        # posterior's own reconstructions of training pairs froze (joint speed 0.33 / 0.17 / 0.08 m/s in
+        # seconds 1-3 against the truth's 0.45), so the decoder was short of training, not of a latent. In-sample
+        # (K = 10, 2 s): best-of-10 ADE 0.632 -> 0.578 m, joint speed in the 2nd second 0.31 -> 0.43 of the
+        # truth's, one-frame / five-frame speed 1.24 -> 1.06 (truth 1.12), truth outside 75 -> 54%, follow
+        # rho 0.67 -> 0.59. 15000 steps: 0.550 m and 0.48 but rho 0.47, so the shorter run is served. At
+        # lr 0.007, 8000 steps had brought the jitter back (1.47).
         self.weights = {"rec": 100.0, "smooth": 100.0, "kl": 1.0, "root": 1.0, "floor": 1000.0, "speed": 0.0,
                         "skate": 0.0, **cfg.get("loss", {})}
         self.bank = self.pairs = None
