@@ -123,6 +123,23 @@ describe('permalinks', () => {
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
+  it('the stage bar (camera, closest to truth, ground truth) arrives from a link and goes into it', async () => {
+    const shown = new URL(page.url());
+    shown.searchParams.set('camera', 'side');
+    shown.searchParams.set('truth', '0');
+    await page.goto(shown.href);
+    await predicted(page);
+    expect(await page.getByTestId('camera-preset').inputValue()).toBe('side');
+    expect(await page.getByTestId('truth-toggle').getAttribute('aria-pressed')).toBe('false');
+    expect(await page.evaluate(() => window.motionFutures!.view.camera)).toBe('side');
+    await page.getByTestId('best-toggle').click();
+    await page.waitForFunction(() => new URL(location.href).searchParams.get('closest') === '1');
+    await page.getByTestId('camera-preset').selectOption('auto');
+    await page.getByTestId('truth-toggle').click();
+    await page.waitForFunction(() => !new URL(location.href).searchParams.has('camera') && !new URL(location.href).searchParams.has('truth'));
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
   it('"Copy link" copies the permalink, which opens the same futures in a new tab', async () => {
     await page.getByTestId('copy-link').click();
     await expect.poll(() => page.getByTestId('share-status').textContent()).toBe('Link copied.');

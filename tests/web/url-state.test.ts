@@ -139,6 +139,31 @@ describe('the feet option', () => {
   });
 });
 
+describe('the stage bar in a link', () => {
+  const entry = served.models[0];
+  const state: ShareState = {
+    version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'cmu_10_04', start: 0, seed: 7,
+    controls: Object.fromEntries(entry.controls.map((c) => [c.id, c.default as ControlValue])),
+  };
+  it('writes only what differs from the page and reads it back', () => {
+    expect(encodeState({ ...state, view: { camera: 'auto', closest: false, truth: true } }, served)
+      .filter(([k]) => ['camera', 'closest', 'truth'].includes(k))).toEqual([]);
+    const view = { camera: 'side' as const, closest: true, truth: false };
+    const { state: back, problems } = roundTrip({ ...state, view }, served);
+    expect(problems).toEqual([]);
+    expect(back.view).toEqual(view);
+  });
+  it('names a bad value and keeps the default for it', () => {
+    const { state: back, problems } = decodeState([['model', entry.id], ['camera', 'drone'], ['closest', 'yes'], ['truth', '2']], served, '0.1.0');
+    expect(back.view).toBeUndefined();
+    expect(problems.map((p) => p.text)).toEqual([
+      expect.stringContaining("The camera must be auto, front, side, top, follow, got 'drone'"),
+      expect.stringContaining("The closest option must be 1 or 0, got 'yes'"),
+      expect.stringContaining("The truth option must be 1 or 0, got '2'"),
+    ]);
+  });
+});
+
 describe('links that do not fit this site say so', () => {
   const entry = served.models[0];
   const base: ShareState = {

@@ -9,10 +9,12 @@
 //   sample as the labels number it (#N, from 1), the paused timeline frame, the layout
 //   &compare=ID,ID[,ID]   compare mode (ui/compare.ts): every model on stage, the link's model first
 //   &feet=own   the method's own root travel (absent: planted feet, predictor/foot-plant.ts)
+//   &camera=front|side|top|follow &closest=1 &truth=0   the stage bar (ui/stage-view.ts), each optional
 import type { ControlSpec, Manifest, ModelEntry } from '../contract/types';
 import { MAX_SEED } from '../rng/prng';
 import type { ControlValue } from '../ui/controls';
 import type { LayoutMode } from '../viewer/layout';
+import { CAMERA_PRESETS, type CameraPreset } from '../viewer/viewer';
 import { MAX_COMPARED, parseCompare } from '../ui/compare';
 
 export type { ControlValue };
@@ -56,6 +58,11 @@ export interface StageView {
   sample?: number;
   frame?: number;
   layout?: LayoutMode;
+  /** The stage bar (ui/stage-view.ts): a camera other than "fit all", the closest sample highlighted,
+   *  the ground truth hidden. */
+  camera?: CameraPreset;
+  closest?: boolean;
+  truth?: boolean;
 }
 
 /** The model the page opens on, and what a link naming no model (or an unknown one) shows: WAT
@@ -89,7 +96,7 @@ export interface Problem {
 
 export const HASH_CHARS = 12;
 /** Names of the state's own fields, and of the view options that share the same parameter space. */
-export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout', 'compare', 'feet'] as const;
+export const STATE_KEYS = ['v', 'model', 'hash', 'clip', 'start', 'seed', 'sample', 'frame', 'layout', 'compare', 'feet', 'camera', 'closest', 'truth'] as const;
 export const VIEW_KEYS = ['controls', 'autoplay', 'predict', 'page'] as const;
 const RESERVED = new Set<string>([...STATE_KEYS, ...VIEW_KEYS]);
 /** The action-sequence composer's length when the manifest gives no max_length (controls.ts). */
@@ -188,6 +195,7 @@ export function validateState(state: ShareState, manifest: Manifest): ModelEntry
   }
   if (v.frame !== undefined && !(Number.isInteger(v.frame) && v.frame >= 0)) throw new UrlStateError(`the frame must be a frame number, got ${v.frame}`);
   if (v.layout !== undefined && !LAYOUTS.includes(v.layout)) throw new UrlStateError(`the layout must be ${LAYOUTS.join(' or ')}, got '${v.layout}'`);
+  if (v.camera !== undefined && !CAMERA_PRESETS.includes(v.camera)) throw new UrlStateError(`the camera must be ${CAMERA_PRESETS.join(', ')}, got '${v.camera}'`);
   if (state.compare !== undefined) {
     const c = state.compare;
     const bad = c.find((id) => !manifest.models.some((m) => m.id === id));
@@ -221,6 +229,9 @@ export function encodeState(state: ShareState, manifest: Manifest): [string, str
   if (v.sample !== undefined) out.push(['sample', String(v.sample + 1)]);
   if (v.frame !== undefined) out.push(['frame', String(v.frame)]);
   if (v.layout !== undefined) out.push(['layout', v.layout]);
+  if (v.camera !== undefined && v.camera !== 'auto') out.push(['camera', v.camera]);
+  if (v.closest) out.push(['closest', '1']);
+  if (v.truth === false) out.push(['truth', '0']);
   if (state.compare?.length) out.push(['compare', state.compare.join(',')]);
   if (state.feet === 'own') out.push(['feet', 'own']);
   return out;
@@ -330,6 +341,18 @@ export function decodeState(params: Iterable<[string, string]>, manifest: Manife
   if (layout !== undefined) {
     if ((LAYOUTS as readonly string[]).includes(layout)) view.layout = layout as LayoutMode;
     else warn(`The layout must be ${LAYOUTS.join(' or ')}, got '${layout}'; the page picks one.`);
+  }
+  const cam = q.get('camera');
+  if (cam !== undefined) {
+    if ((CAMERA_PRESETS as readonly string[]).includes(cam)) { if (cam !== 'auto') view.camera = cam as CameraPreset; }
+    else warn(`The camera must be ${CAMERA_PRESETS.join(', ')}, got '${cam}'; the camera fits all.`);
+  }
+  for (const [key, field, shown] of [['closest', 'closest', 'the closest sample is not highlighted'],
+    ['truth', 'truth', 'the ground truth is shown']] as const) {
+    const text = q.get(key);
+    if (text === undefined) continue;
+    if (text === '1' || text === '0') { if ((text === '1') !== (field === 'truth')) view[field] = text === '1'; }
+    else warn(`The ${key} option must be 1 or 0, got '${text}'; ${shown}.`);
   }
   if (Object.keys(view).length) state.view = view;
 

@@ -39,7 +39,7 @@ import { mountImportPanel } from './import-panel';
 import { mountCapturePanel } from './capture';
 import { mountViewSummary } from './view-summary';
 import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar } from './stage-parts';
-import { mountStageView } from './stage-view';
+import { mountStageView, type StageChoices } from './stage-view';
 import { startWorker, workerClient } from './predictor-start';
 import { mountComparePanel, type ComparePanel } from './compare-panel';
 import { mountRefusalNotice } from './refusal-notice';
@@ -173,6 +173,11 @@ function showProblems(banner: MessageBanner, problems: Problem[]): void {
 
 const megabytes = (b: number) => `${(b / 1e6).toFixed(b >= 1e7 ? 0 : 1)} MB`;
 
+/** The stage bar's choices as a link writes them: only what differs from the page's defaults. */
+function barChoices(c: StageChoices): Pick<NonNullable<ShareState['view']>, 'camera' | 'closest' | 'truth'> {
+  return { ...(c.camera !== 'auto' ? { camera: c.camera } : {}), ...(c.closest ? { closest: true } : {}), ...(c.truth ? {} : { truth: false }) };
+}
+
 export function startApp(parts: AppParts, o: AppOptions): App {
   const { view: options, siteRoot } = o;
   performance.mark('mf:app-start'); // marks: the benchmark's first-futures timeline (bench/browser.ts)
@@ -181,7 +186,8 @@ export function startApp(parts: AppParts, o: AppOptions): App {
   if (options.page) catchUncaught(banner);
   const { view } = mountViewer(parts.viewer);
   const setPhase = mountPhaseLabel(parts.viewer);
-  mountStageView(parts.viewer, view); // camera presets, closest-to-truth and ground-truth toggles
+  // camera presets, closest-to-truth and ground-truth toggles; what they show is part of the link
+  const stageBar = mountStageView(parts.viewer, view, () => refreshShare());
   const player = new Player(30);
   const playback = mountPlaybackBar(parts.playback, player);
   /** The first predicted frame of what is on stage; null for a clip alone. */
@@ -395,6 +401,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
       sample: predictor.selected ?? undefined,
       frame: player.state.playing ? undefined : player.state.frame,
       layout: view.layout,
+      ...barChoices(stageBar.choices()),
     };
   }
 
@@ -468,6 +475,7 @@ export function startApp(parts: AppParts, o: AppOptions): App {
     if (asked) predictor.setInputs({ ...asked, plantFeet: asked.feet !== 'own' });
     if (asked?.compare) { compare?.setPrimary(asked.model); compare?.set(asked.compare); }
     if (asked?.view?.layout) { layoutChosen = true; setLayout(asked.view.layout); }
+    if (asked?.view) stageBar.set({ camera: asked.view.camera, closest: asked.view.closest, truth: asked.view.truth });
     if (options.autoPredict) predictor.warm();
     return asked;
   };

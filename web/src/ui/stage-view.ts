@@ -6,10 +6,20 @@
 import { CAMERA_PRESETS, type CameraPreset, type SkeletonView } from '../viewer/viewer';
 import { el } from './dom';
 
+/** What the bar has chosen, as a permalink keeps it (share/url-state.ts). */
+export interface StageChoices {
+  camera: CameraPreset;
+  closest: boolean;
+  truth: boolean;
+}
+
 export interface StageView {
   root: HTMLElement;
   /** Re-read the view (best sample, whether there is a truth); the view calls it after new tracks. */
   refresh(): void;
+  choices(): StageChoices;
+  /** Set what a link asks for (each part optional). */
+  set(c: Partial<StageChoices>): void;
 }
 
 const PRESET_LABELS: Record<CameraPreset, string> = {
@@ -50,7 +60,7 @@ function adoptStyles(node: Node): void {
   }
 }
 
-export function mountStageView(viewer: HTMLElement, view: SkeletonView): StageView {
+export function mountStageView(viewer: HTMLElement, view: SkeletonView, onChange: () => void = () => {}): StageView {
   const camera = el('select', { class: 'camera-preset', 'aria-label': 'Camera', 'data-testid': 'camera-preset',
     title: 'Where the camera looks from; "follow one" travels with the selected sample (else the closest, else #1)' },
   ...CAMERA_PRESETS.map((p) => el('option', { value: p }, PRESET_LABELS[p])));
@@ -87,10 +97,19 @@ export function mountStageView(viewer: HTMLElement, view: SkeletonView): StageVi
       if (narrow !== compact) { compact = narrow; refresh(); }
     }).observe(viewer);
   }
-  camera.addEventListener('change', () => view.setCamera(camera.value as CameraPreset));
-  best.addEventListener('click', () => { bestOn = !bestOn; view.setBestShown(bestOn); refresh(); });
-  truth.addEventListener('click', () => { truthOn = !truthOn; view.setTruthShown(truthOn); refresh(); });
+  camera.addEventListener('change', () => { view.setCamera(camera.value as CameraPreset); onChange(); });
+  best.addEventListener('click', () => { bestOn = !bestOn; view.setBestShown(bestOn); refresh(); onChange(); });
+  truth.addEventListener('click', () => { truthOn = !truthOn; view.setTruthShown(truthOn); refresh(); onChange(); });
   view.onTracks(refresh);
   refresh();
-  return { root, refresh };
+  return {
+    root, refresh,
+    choices: () => ({ camera: camera.value as CameraPreset, closest: bestOn, truth: truthOn }),
+    set(c) {
+      if (c.camera !== undefined) { camera.value = c.camera; view.setCamera(c.camera); }
+      if (c.closest !== undefined) { bestOn = c.closest; view.setBestShown(bestOn); }
+      if (c.truth !== undefined) { truthOn = c.truth; view.setTruthShown(truthOn); }
+      refresh();
+    },
+  };
 }
