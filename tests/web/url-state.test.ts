@@ -94,6 +94,12 @@ function roundTrip(state: ShareState, manifest: Manifest) {
   return decodeState(url.searchParams, manifest, state.version, { reportUnknown: true });
 }
 
+/** A served model's state at its controls' defaults. */
+function atDefaults(entry: ModelEntry): ShareState {
+  return { version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'cmu_10_04', start: 0, seed: 7,
+    controls: Object.fromEntries(entry.controls.map((c) => [c.id, c.default as ControlValue])) };
+}
+
 describe('URL state round trip', () => {
   it('any valid state for generated controls comes back unchanged, with no problems', () => {
     fc.assert(fc.property(generated, ([manifest, state]) => {
@@ -127,10 +133,7 @@ describe('URL state round trip', () => {
 describe('the feet option', () => {
   const entry = served.models[0];
   it('is written only for the method\'s own root, and a bad value is named and planted', () => {
-    const state: ShareState = {
-      version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'cmu_10_04', start: 0, seed: 7,
-      controls: Object.fromEntries(entry.controls.map((c) => [c.id, c.default as ControlValue])),
-    };
+    const state = atDefaults(entry);
     expect(encodeState(state, served).some(([k]) => k === 'feet')).toBe(false);
     expect(encodeState({ ...state, feet: 'own' }, served)).toContainEqual(['feet', 'own']);
     const { state: back, problems } = decodeState([['model', entry.id], ['feet', 'sliding']], served, '0.1.0');
@@ -141,10 +144,7 @@ describe('the feet option', () => {
 
 describe('the stage bar in a link', () => {
   const entry = served.models[0];
-  const state: ShareState = {
-    version: '0.1.0', model: entry.id, hash: shortHash(entry.hash), clip: 'cmu_10_04', start: 0, seed: 7,
-    controls: Object.fromEntries(entry.controls.map((c) => [c.id, c.default as ControlValue])),
-  };
+  const state = atDefaults(entry);
   it('writes only what differs from the page and reads it back', () => {
     expect(encodeState({ ...state, view: { camera: 'auto', closest: false, truth: true } }, served)
       .filter(([k]) => ['camera', 'closest', 'truth'].includes(k))).toEqual([]);
