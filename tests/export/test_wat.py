@@ -311,7 +311,9 @@ def test_stops_follow_eq8_on_the_decoder_output_and_recursion_uses_the_last_n_fr
     method, model, entry, out = tiny
     p = entry["params"]
     history = _history(clips)
-    pred = load_predictor(entry["id"], out).predict(history, Request(k=2, seed=5, actions=["punch", "walk"]))
+    # the method's own root (plant_feet off): the recursion reads the decoder's frames, planted after it
+    pred = load_predictor(entry["id"], out).predict(history, Request(k=2, seed=5, actions=["punch", "walk"],
+                                                                     plant_feet=False))
     # Redo both steps by hand for sample 1 with the same draws (one stream per sample, export/rng.py).
     runner, draws = GraphRunner(entry, out), streams(5, 2)
     onehot = lambda a: np.eye(len(p["actions"]), dtype=np.float32)[[p["actions"].index(a)] * 2]
