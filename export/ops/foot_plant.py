@@ -26,7 +26,7 @@ sit either side of the 3 cm contact band of the floor and of the skating measure
 
 This is the product's post-process, not a paper's: the evaluation shows every served learned model also
 with `plant_feet` off (the method's own root, export/eval/rows.py). TypeScript twin:
-web/src/predictor/foot-plant.ts; shared vectors contract/vectors/foot-plant.json.
+web/src/predictor/foot-plant.ts; shared vectors contract/vectors/foot_plant.json.
 """
 from __future__ import annotations
 

@@ -347,13 +347,15 @@ export function decodeState(params: Iterable<[string, string]>, manifest: Manife
     if ((CAMERA_PRESETS as readonly string[]).includes(cam)) { if (cam !== 'auto') view.camera = cam as CameraPreset; }
     else warn(`The camera must be ${CAMERA_PRESETS.join(', ')}, got '${cam}'; the camera fits all.`);
   }
-  for (const [key, field, shown] of [['closest', 'closest', 'the closest sample is not highlighted'],
-    ['truth', 'truth', 'the ground truth is shown']] as const) {
+  /** A 1|0 option: its value, or undefined when absent or bad (a bad one is named). */
+  const flag = (key: string, fallback: string): boolean | undefined => {
     const text = q.get(key);
-    if (text === undefined) continue;
-    if (text === '1' || text === '0') { if ((text === '1') !== (field === 'truth')) view[field] = text === '1'; }
-    else warn(`The ${key} option must be 1 or 0, got '${text}'; ${shown}.`);
-  }
+    if (text === undefined || text === '1' || text === '0') return text === undefined ? undefined : text === '1';
+    warn(`The ${key} option must be 1 or 0, got '${text}'; ${fallback}.`);
+    return undefined;
+  };
+  if (flag('closest', 'the closest sample is not highlighted')) view.closest = true;
+  if (flag('truth', 'the ground truth is shown') === false) view.truth = false;
   if (Object.keys(view).length) state.view = view;
 
   // Compare mode: known models only (each dropped one named), the link's model first.
