@@ -136,7 +136,8 @@ describe('the odd held-out walks of issue 30 give their warning with every serve
       expect(misses).toEqual([]);
     }, 120_000);
   }
-  // tempo sees about half of the held-out walk windows at 0.5x (export/ops/envelope.py): a known miss
+  // tempo sees about half of the held-out walk windows at 0.5x (export/ops/envelope.py): a known miss. Here it is
+  // the first walk from frame 0, a person standing before the first step (tests/export/test_odd_histories.py)
   it.fails('a walk at half speed is warned, every time', async () => {
     for (const w of walks) expect(await gives(manifest.models[0].id, 'speed 0.5x', w)).toBeNull();
   });
