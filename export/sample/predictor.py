@@ -14,6 +14,7 @@ from ..manifest import entry as find_entry, read_manifest
 from ..paths import MODELS_DIR
 from ..ops.foot_plant import plant_feet
 from .canonical import SCALE_LIMITS, SCALE_TOLERANCE, body_scale, rescale, scale_anchor
+from .ghosts import follow_roots
 from .guard import cut_out_of_bounds
 from .history import refusal_with_warnings, warnings_for
 from .request import Prediction, PredictError, Request, check_history, check_request
@@ -49,8 +50,11 @@ class Predictor:
             pred = self._predict(work, req)
         except PredictError as e:   # a refusal leads with the warning that most likely caused it
             raise PredictError(refusal_with_warnings(str(e), warnings)) from None
-        if req.plant_feet:               # feet on the floor carry the root (ops/foot_plant.py)
-            pred.futures = plant_feet(work[-1], pred.futures).astype(np.float32)
+        if req.plant_feet:               # feet on the floor carry the root (ops/foot_plant.py), and the ghosts with it
+            planted = plant_feet(work[-1], pred.futures).astype(np.float32)
+            if pred.ghosts is not None:
+                follow_roots(pred.ghosts, pred.futures, planted)
+            pred.futures = planted
         cut_out_of_bounds(pred.futures, pred.lengths, pred.samples, work[-n:])
         if pred.ghosts is not None:      # keypose ghosts past a cut go with it
             for i, s in enumerate(pred.samples):

@@ -5,6 +5,7 @@
 // figure. The history's warnings, its scale and the refusals' order are history.ts's.
 import { DirectPredictor } from './direct';
 import { plantFeet } from './foot-plant';
+import { followRoots } from './ghosts';
 import { cutOutOfBounds } from './guard';
 import { KeyposesPredictor } from './keyposes';
 import { LcpVaePredictor } from './lcp-vae';
@@ -51,7 +52,12 @@ class Guarded implements Predictor {
     const pred = await this.inner.predict(history, req, isCancelled);
     const recent = history.positions.subarray((history.frames - n) * j * 3);
     // feet on the floor carry the root (foot-plant.ts), then the bounds are checked on what is drawn
-    if (req.plantFeet !== false) plantFeet(recent.subarray((n - 1) * j * 3), pred.futures, pred.k, pred.frames, skeleton);
+    // (the ghosts move with their futures' roots: ghosts.ts)
+    if (req.plantFeet !== false) {
+      const before = pred.ghosts ? pred.futures.slice() : undefined;
+      plantFeet(recent.subarray((n - 1) * j * 3), pred.futures, pred.k, pred.frames, skeleton);
+      if (pred.ghosts && before) followRoots(pred.ghosts, before, pred.futures, pred.frames, pred.joints);
+    }
     cutOutOfBounds(pred, recent, n, skeleton);
     pred.warnings = [];   // the history's warnings are history.ts's (createCheckedPredictor)
     return pred;
