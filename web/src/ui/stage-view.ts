@@ -1,8 +1,8 @@
 // "Seeing what matters", over the stage's bottom-right corner: the camera presets (front, side, top,
 // follow one figure), a toggle that highlights the sample closest to the ground truth (with its
-// per-joint error; in compare mode one in each model's row), and one that hides the ground truth. It also carries the styles of what the
-// viewer adds to each figure's label (the current action, the "stopped" and "closest" badges), so the
-// parts of this feature live together. Placed absolutely: nothing here moves or resizes the stage.
+// per-joint error; in compare mode one in each model's row), and one that hides the ground truth. It
+// also carries the styles of what the viewer adds to each figure's label (the current action, the
+// "stopped" and "closest" badges), so the parts of this feature live together. Placed absolutely: nothing here moves or resizes the stage.
 import { CAMERA_PRESETS, type CameraPreset, type SkeletonView } from '../viewer/viewer';
 import { el } from './dom';
 
