@@ -1,9 +1,11 @@
-// Issue 29 items 2 and 7 in a real Chromium. Compare mode: two models from a permalink on the same
+// Issue 29 items 2, 4 and 7 in a real Chromium. Compare mode: two models from a permalink on the same
 // history end and seed, one labelled row per model on stage, each with its read-out, kept in the link,
-// and in an embed through its compare attribute; an unknown model id is named. A refusal: the stage
+// and in an embed through its compare attribute; an unknown model id is named. The closest-to-truth
+// highlight marks one sample in each row, and the exports (JSON, CSV) and the read-out's JSON hold
+// every compared model, labelled, the ground truth once and the foot-planting option. A refusal: the stage
 // drops the previous model's futures, says so in one sentence and offers the nearest start the method
 // accepts, which then predicts; a clip with no such start says so.
-import { mkdirSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import { shortLabel } from '../../web/src/ui/compare';
@@ -23,7 +25,7 @@ async function figuresAt(page: Page, frame: number) {
   return page.evaluate((f) => {
     const app = window.motionFutures!;
     app.player.pause(); app.player.seek(f);
-    return app.view.figures().map((x) => ({ role: x.role, group: x.group, label: x.label, cy: (x.box.top + x.box.bottom) / 2 }));
+    return app.view.figures().map((x) => ({ role: x.role, group: x.group, sample: x.sample, label: x.label, best: x.best, cy: (x.box.top + x.box.bottom) / 2 }));
   }, frame);
 }
 
@@ -38,6 +40,7 @@ describe('compare mode and refusals', () => {
     mkdirSync(SHOTS, { recursive: true });
     session = await openBrowser({ viewport: { width: 1440, height: 900 } });
     page = session.page;
+    await session.context.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(baseUrl).origin });
   });
   afterAll(async () => { await session?.close(); });
 
@@ -88,6 +91,88 @@ describe('compare mode and refusals', () => {
     await predicted(page);
     const single = await page.evaluate(() => Array.from(window.motionFutures!.predictor.last!.prediction.futures.subarray(0, 999)));
     expect(digest(single)).toBe(digest(rows[1].digest!));
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('closest to truth marks one sample in each row; the exports and the read-out JSON hold every row, labelled, the truth once, plant_feet', async () => {
+    await waiting(page);
+    await page.goto(`${baseUrl}?compare=${COMPARE}&k=3&seed=4&layout=side&feet=own`);
+    await predicted(page);
+    await page.waitForSelector(`body[data-compare-models="${COMPARE}"]`, { state: 'attached' });
+    const clip = defaultHistory().clip.name;
+    // each row's closest sample, computed here from the rows' futures and the clip: the smallest mean
+    // per-joint distance (world frame) over the truth's frames, a short sample holding its last pose
+    const rows = await page.evaluate(() => {
+      const app = window.motionFutures!;
+      const m = app.onStage().motion!;
+      const stride = m.joints * 3;
+      return app.predictor.last!.compare!.map((r) => {
+        const p = r.prediction!;
+        const end = r.start + r.entry.params.history_frames;
+        const T = Math.min(m.frames - end, Math.max(...p.lengths));
+        const err = Array.from({ length: p.k }, (_, i) => {
+          let sum = 0;
+          for (let f = 0; f < T; f++) {
+            const g = Math.min(f, p.lengths[i] - 1);
+            for (let j = 0; j < m.joints; j++) {
+              const a = (i * p.frames + g) * stride + j * 3;
+              const b = (end + f) * stride + j * 3;
+              sum += Math.hypot(p.futures[a] - m.positions[b], p.futures[a + 1] - m.positions[b + 1], p.futures[a + 2] - m.positions[b + 2]);
+            }
+          }
+          return sum / (T * m.joints);
+        });
+        return { id: r.entry.id, start: r.start, n: r.entry.params.history_frames, k: p.k, closest: err.indexOf(Math.min(...err)), T,
+          plantFeet: r.plantFeet, first: Array.from(p.futures.subarray(0, 6)), controls: r.controls };
+      });
+    });
+    expect(rows.map((r) => r.id)).toEqual([A.id, B.id]);
+    expect(rows.every((r) => r.T > 0)).toBe(true);
+    expect(rows.map((r) => r.plantFeet)).toEqual([false, false]);
+    await page.getByTestId('best-toggle').click();
+    await settle(page);
+    const origin = Math.max(A.params.history_frames, B.params.history_frames);
+    const figures = (await figuresAt(page, origin + 15)).filter((f) => f.role === 'prediction');
+    const best = figures.filter((f) => f.best);
+    expect(best.map((f) => [f.group, f.sample])).toEqual(rows.map((r, g) => [g, r.closest]));
+    for (const f of best) expect(f.label).toContain('closest to truth');
+    expect(await page.locator('.figure-label-best').count()).toBe(2);   // side by side: one label per cell
+    expect(await page.getByTestId('best-toggle').getAttribute('data-rows')).toBe(rows.map((r, g) => `${g}:${r.closest}`).join(','));
+    const toggle = await page.getByTestId('best-toggle').textContent();
+    expect(toggle).toContain(`${shortLabel(A)} #${rows[0].closest + 1}`);
+    expect(toggle).toContain(`${shortLabel(B)} #${rows[1].closest + 1}`);
+    await page.locator('[data-section="compare"]').scrollIntoViewIfNeeded();
+    writeFileSync(`${SHOTS}/compare-closest.png`, await session.screenshot('compare-closest.png'));
+    expect(await page.locator('[data-testid="compare-rows"] li').evaluateAll((li) => li.map((e) => (e as HTMLElement).dataset.plantFeet))).toEqual(['false', 'false']);
+
+    // JSON: a clip per future, named after its model, then the ground truth once; each records its run
+    expect(await page.locator('.export-what').textContent()).toContain(`the futures of ${shortLabel(A)} (3) and ${shortLabel(B)} (3) and the ground truth`);
+    const [json] = await Promise.all([page.waitForEvent('download'), page.locator('#export-json').click()]);
+    expect(json.suggestedFilename()).toBe(`${clip}.${A.id}+${B.id}.6-futures.json`);
+    const docs = JSON.parse(readFileSync((await json.path())!, 'utf8')) as { name: string; source: Record<string, any>; positions: number[][][] }[];
+    const names = [A, B].flatMap((e) => [1, 2, 3].map((i) => `${clip}.${e.id}_sample_${i}`));
+    expect(docs.map((d) => d.name)).toEqual([...names, `${clip}.ground_truth`]);
+    rows.forEach((r, g) => {
+      const doc = docs[g * 3];
+      expect(doc.source.run).toMatchObject({ model: r.id, history_start: r.start, history_frames: r.n, seed: 4, plant_feet: false, controls: r.controls });
+      // its first future frame is the row's first predicted pose
+      expect(doc.positions[origin][0].map((v) => Math.fround(v))).toEqual(r.first.slice(0, 3).map((v) => Math.fround(v)));
+    });
+    expect(docs.at(-1)!.source).not.toHaveProperty('run');
+    // CSV: the same figures, the ground truth's rows once
+    const [csv] = await Promise.all([page.waitForEvent('download'), page.locator('#export-csv').click()]);
+    const lines = readFileSync((await csv.path())!, 'utf8').trimEnd().split('\n');
+    expect(lines[0]).toBe('figure,frame,time,joint,x,y,z');
+    const figureNames = [...new Set(lines.slice(1).map((l) => l.split(',')[0]))];
+    expect(figureNames).toEqual(['history', ...names.map((n) => n.slice(clip.length + 1)), 'ground_truth']);
+    const J = docs[0].positions[0].length;
+    expect(lines.filter((l) => l.startsWith('ground_truth,'))).toHaveLength(Math.max(...rows.map((r) => r.T)) * J);
+    // the read-out's JSON names the foot planting, its own and each compared row's
+    await page.getByTestId('copy-numbers').click();
+    await expect.poll(() => page.locator('.copy-status').textContent()).toBe('Copied.');
+    const numbers = JSON.parse(await page.evaluate(() => navigator.clipboard.readText()));
+    expect(numbers.plant_feet).toBe(false);
+    expect(numbers.compared_with).toEqual([expect.objectContaining({ model: B.id, history_start: rows[1].start, plant_feet: false })]);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 

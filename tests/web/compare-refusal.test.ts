@@ -76,9 +76,9 @@ describe('compare mode in the permalink', () => {
     const nb = b.params.history_frames;
     const end = 40;
     const { tracks, origin } = compareTracks(m, [
-      { entry: a, start: end - na, controls: {}, prediction: pred(2, 15) },
-      { entry: b, start: end - nb, controls: {}, prediction: pred(2, 12) },
-      { entry: model('lcp-vae'), start: 0, controls: {}, error: 'refused' },
+      { entry: a, start: end - na, controls: {}, plantFeet: true, prediction: pred(2, 15) },
+      { entry: b, start: end - nb, controls: {}, plantFeet: true, prediction: pred(2, 12) },
+      { entry: model('lcp-vae'), start: 0, controls: {}, plantFeet: true, error: 'refused' },
     ]);
     expect(origin).toBe(Math.max(na, nb));
     const histories = tracks.filter((t) => t.role === 'history');

@@ -1,7 +1,7 @@
 // A dropped BVH, predicted from in Node with a served model: the "what is shown" the export tests use.
 import { readFileSync } from 'node:fs';
 import type { ClipIndex } from '../../../web/src/contract/types';
-import { shownFromPrediction, type Shown } from '../../../web/src/export/shown';
+import { shownFromRuns, type Shown } from '../../../web/src/export/shown';
 import { importBvh, type ImportedMotion } from '../../../web/src/motion/bvh';
 import { window as clipWindow } from '../../../web/src/motion/clip';
 import type { Prediction } from '../../../web/src/predictor/types';
@@ -35,5 +35,5 @@ export async function shownWithSamples(k: number, selected: number | null = null
   }
   const lengths = Int32Array.from({ length: k }, (_, i) => p.frames - 7 * i);
   const multi: Prediction = { ...p, k, futures, lengths, samples: Array.from({ length: k }, (_, i) => ({ length: lengths[i], stopped: true, segments: [] })) };
-  return shownFromPrediction(m, 12, n, multi, { selected, model: 'regression-gru' });
+  return shownFromRuns(m, [{ model: 'regression-gru', start: 12, historyFrames: n, prediction: multi }], { selected });
 }

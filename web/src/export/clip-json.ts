@@ -1,10 +1,13 @@
 // Export what is shown as clip documents of the contract (contract/clip.schema.json): one clip per
 // future, each the history followed by that future, so it plays as one continuous motion, and after
-// them the ground truth the same way (name "<clip>.ground_truth", action "ground truth").
+// them the ground truth the same way (name "<clip>.ground_truth", action "ground truth"). Several
+// models (compare mode): each future's clip is named after its model ("<clip>.<model>_sample_<n>"),
+// all start with the same (longest) history, and the truth comes once. Each prediction's source
+// records its run (model, its own history, seed, controls, plant_feet) so it can be made again.
 // One clip document alone -> that document; several -> a JSON array of clip documents.
 import type { ClipDoc } from '../contract/types';
 import { validate } from '../contract/validate';
-import { checkShown, figureName, float32Text, TRUTH_FIGURE, type Shown } from './shown';
+import { checkShown, float32Text, futureName, runRecord, TRUTH_FIGURE, type Shown, type ShownRun } from './shown';
 
 export function clipDocuments(s: Shown): ClipDoc[] {
   checkShown(s);
@@ -12,8 +15,9 @@ export function clipDocuments(s: Shown): ClipDoc[] {
   const frame = (arr: Float32Array, f: number) =>
     Array.from({ length: J }, (_, j) => [0, 1, 2].map((c) => Number(float32Text(arr[(f * J + j) * 3 + c])))) as number[][];
   const figures = [
-    ...s.futures.map((fut) => ({ name: figureName(fut.sample), sample: fut.sample as number | null, frames: fut.frames, positions: fut.positions })),
-    ...(s.truth ? [{ name: TRUTH_FIGURE, sample: null, frames: s.truth.frames, positions: s.truth.positions }] : []),
+    ...s.futures.map((fut) => ({ name: futureName(s, fut), sample: fut.sample as number | null, run: s.runs[fut.run] as ShownRun | null,
+      frames: fut.frames, positions: fut.positions })),
+    ...(s.truth ? [{ name: TRUTH_FIGURE, sample: null, run: null, frames: s.truth.frames, positions: s.truth.positions }] : []),
   ];
   return figures.map((fig) => {
     const frames = s.history.frames + fig.frames;
@@ -27,8 +31,9 @@ export function clipDocuments(s: Shown): ClipDoc[] {
       split: { role: 'test', train: [], test: [[s.history.frames, frames]] },
       source: {
         dataset: truth ? 'motion-futures ground truth' : 'motion-futures prediction', file: s.name,
-        ...(s.model ? { model: s.model } : {}), ...(truth ? {} : { sample: fig.sample! + 1 }),
+        ...(fig.run?.model ? { model: fig.run.model } : {}), ...(truth ? {} : { sample: fig.sample! + 1 }),
         start: s.start, history_frames: s.history.frames,
+        ...(fig.run ? { run: runRecord(fig.run) } : {}),
       } as ClipDoc['source'],
       positions,
     };

@@ -5,17 +5,20 @@
 //       history_root       <- a node per joint, nested like the skeleton, a small sphere each;
 //         history_chest       its translation track is the offset from its parent joint
 //         ...
-//     sample_1 ...         <- each future; hidden (scale 0, STEP) until half a frame before its first
+//     sample_1 ...         <- each future ("<model>_sample_1" when several models are shown); hidden
+//                             (scale 0, STEP) until half a frame before its first
 //     ground_truth         <- what the clip really does next, the same way (when the clip has it)
 // Time: frame f of the history at f / fps; future frame i at (history frames + i) / fps. Like the
 // page, the history holds its last pose while the futures play, and each future holds its last pose.
+// The scene's extras ("runs") record each model's run (model, its own history, seed, controls,
+// plant_feet), and each future's group its model and sample.
 import {
   AnimationClip, Group, IcosahedronGeometry, InterpolateDiscrete, Mesh, MeshStandardMaterial, Object3D, VectorKeyframeTrack,
   type KeyframeTrack,
 } from 'three';
 import { GLTFExporter } from 'three/examples/jsm/exporters/GLTFExporter.js';
 import { sideOf, tintColour, type Side } from '../viewer/palette';
-import { checkShown, figureName, TRUTH_FIGURE, type Shown } from './shown';
+import { checkShown, figureName, futureName, modelsText, runRecord, TRUTH_FIGURE, type Shown } from './shown';
 
 export const JOINT_RADIUS = 0.02;
 
@@ -24,7 +27,7 @@ export function jointNodeName(figure: string, joint: string): string {
   return `${figure}_${joint}`;
 }
 
-interface Figure { name: string; sample: number | null; truth?: boolean; positions: Float32Array; frames: number; first: number }
+interface Figure { name: string; sample: number | null; run?: number; truth?: boolean; positions: Float32Array; frames: number; first: number }
 
 /** The scene and animation of a Shown (exported by glbBytes; also useful for tests and previews). */
 export function shownScene(s: Shown): { scene: Group; clip: AnimationClip } {
@@ -33,16 +36,18 @@ export function shownScene(s: Shown): { scene: Group; clip: AnimationClip } {
   const parents = s.skeleton.parents;
   const scene = new Group();
   scene.name = 'motion-futures';
+  scene.userData = { runs: s.runs.map(runRecord) };
   const geometry = new IcosahedronGeometry(JOINT_RADIUS, 1);
   const tracks: KeyframeTrack[] = [];
   const figures: Figure[] = [
     { name: figureName(null), sample: null, positions: s.history.positions, frames: s.history.frames, first: 0 },
-    ...s.futures.map((f) => ({ name: figureName(f.sample), sample: f.sample, positions: f.positions, frames: f.frames, first: s.history.frames })),
+    ...s.futures.map((f) => ({ name: futureName(s, f), sample: f.sample, run: f.run, positions: f.positions, frames: f.frames, first: s.history.frames })),
     ...(s.truth ? [{ name: TRUTH_FIGURE, sample: null, truth: true, positions: s.truth.positions, frames: s.truth.frames, first: s.history.frames }] : []),
   ];
   for (const fig of figures) {
     const group = new Group();
     group.name = fig.name;
+    if (fig.run !== undefined) group.userData = { ...(s.runs[fig.run].model ? { model: s.runs[fig.run].model } : {}), sample: fig.sample! + 1 };
     scene.add(group);
     const tint = fig.truth ? { role: 'truth' as const } : fig.sample === null ? { role: 'history' as const } : { role: 'prediction' as const, sample: fig.sample };
     const materials = new Map<Side, MeshStandardMaterial>();
@@ -83,7 +88,7 @@ export function shownScene(s: Shown): { scene: Group; clip: AnimationClip } {
       tracks.push(new VectorKeyframeTrack(`${fig.name}.scale`, [0, (fig.first - 0.5) / s.fps], [0, 0, 0, 1, 1, 1], InterpolateDiscrete));
     }
   }
-  const clip = new AnimationClip(s.model ? `${s.name} (${s.model})` : s.name, -1, tracks);
+  const clip = new AnimationClip(modelsText(s) ? `${s.name} (${modelsText(s)})` : s.name, -1, tracks);
   return { scene, clip };
 }
 

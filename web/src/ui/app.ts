@@ -33,7 +33,7 @@ import { mountPlaybackBar } from './playback-bar';
 import { Player } from './player';
 import { PredictController } from './predict-controller';
 import { seconds } from './prediction-panel';
-import { shownFromPrediction } from '../export/shown';
+import { shownFromRuns } from '../export/shown';
 import { mountExportPanel } from './export-panel';
 import { mountImportPanel } from './import-panel';
 import { mountCapturePanel } from './capture';
@@ -42,6 +42,7 @@ import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar 
 import { mountStageView, type StageChoices } from './stage-view';
 import { startWorker, workerClient } from './predictor-start';
 import { mountComparePanel, type ComparePanel } from './compare-panel';
+import { exportRuns } from './compare';
 import { mountRefusalNotice } from './refusal-notice';
 
 /** How an instance looks and starts, apart from the prediction state. */
@@ -370,12 +371,13 @@ export function startApp(parts: AppParts, o: AppOptions): App {
   });
   const exporter = mountExportPanel(addSection(panel, 'export', 'Export', 'share').body, {
     banner, status: o.status,
+    // every row on stage: compare mode's, or the page's model alone as one row
     shown: () => {
       const last = predictor.last;
       const entry = last && modelOf(last.model);
       if (!last || !entry || !motion) return null;
-      return shownFromPrediction(motion, last.start, entry.params.history_frames, last.prediction,
-        { selected: predictor.selected, model: last.model });
+      const rows = last.compare ?? [{ entry, start: last.start, controls: last.controls, plantFeet: last.plantFeet !== false, prediction: last.prediction }];
+      return shownFromRuns(motion, exportRuns(rows, last.seed), { selected: predictor.selected });
     },
   });
 

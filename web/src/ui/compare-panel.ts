@@ -74,9 +74,11 @@ export function mountComparePanel(container: HTMLElement, models: readonly Model
             el('span', { title: 'Mean per-joint distance between pairs of samples, averaged over the frames (cm); one future has none' },
               numbers.k > 1 ? `spread ${cm(numbers.spreadCm)}` : 'one future (deterministic)'))
           : el('span', { class: 'compare-error' }, r.error ?? 'no futures');
-        return el('li', { class: 'compare-row', 'data-model': r.entry.id, 'data-row': String(i) },
+        return el('li', { class: 'compare-row', 'data-model': r.entry.id, 'data-row': String(i), 'data-plant-feet': String(r.plantFeet) },
           el('strong', {}, r.entry.label),
-          ` · K = ${numbers?.k ?? '–'} · frames ${r.start}–${r.start + r.entry.params.history_frames - 1}: `, body);
+          ` · K = ${numbers?.k ?? '–'} · frames ${r.start}–${r.start + r.entry.params.history_frames - 1}`,
+          r.plantFeet ? '' : el('span', { title: 'The method\'s own root travel: the feet were not planted on the floor' }, ' · own root'),
+          ': ', body);
       }));
     },
     stale(on) {

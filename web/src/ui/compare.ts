@@ -1,9 +1,10 @@
 // Compare mode (issue 29 item 2): 2-3 models on the same history end, seed, K and horizon, one row per
 // method on stage, each with its own read-out. The pure parts: which models a link or the panel asks
 // for, each model's controls taken from the page's, and the tracks of every row on one timeline.
-// The page's model is the first row; its futures are the ones the rest of the page (export, share,
-// the Futures list) describes.
+// The page's model is the first row; its futures are the ones the Futures list and Share describe,
+// while the export and the closest-to-truth highlight cover every row.
 import type { ModelEntry } from '../contract/types';
+import type { RunPrediction } from '../export/shown';
 import { window as clipWindow, type Motion } from '../motion/clip';
 import type { Prediction } from '../predictor/types';
 import { sampleTrackInfo, type Track } from '../viewer/tracks';
@@ -22,6 +23,8 @@ export interface CompareRow {
   /** First frame of this model's history: its own history length, ending where the page's ends. */
   start: number;
   controls: Record<string, ControlValue>;
+  /** Whether the feet carried the root (the page's foot-planting option, the same for every row). */
+  plantFeet: boolean;
   prediction?: Prediction;
   readout?: StageReadout | null;
   /** Why this model shows no futures (a refusal, a clip too short for its history). */
@@ -112,6 +115,15 @@ export function compareTracks(m: Motion, rows: readonly CompareRow[]): { tracks:
     }
   });
   return { tracks, origin };
+}
+
+/** The rows with futures as an export's runs, in row order: what each model was asked, so the export
+ *  can make them again. The page's model alone is one row (single view and compare: one path). */
+export function exportRuns(rows: readonly CompareRow[], seed: number): RunPrediction[] {
+  return rows.flatMap((r) => (r.prediction ? [{
+    model: r.entry.id, hash: r.entry.hash, label: shortLabel(r.entry), start: r.start, historyFrames: r.entry.params.history_frames,
+    seed, controls: r.controls, plantFeet: r.plantFeet, prediction: r.prediction,
+  }] : []));
 }
 
 /** A model's name without its description ("WAT (RNN): action sequences" -> "WAT (RNN)"): figure labels stay short. */

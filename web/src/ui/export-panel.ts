@@ -1,18 +1,18 @@
-// "Export": download what is on stage (the history with all K futures, or with the selected one, and
-// the ground truth that follows the history as its own figure "ground_truth") as GLB (opens in
-// Blender), as clip JSON (the contract's clip format) or as CSV.
+// "Export": download what is on stage (the history with all K futures of every model on stage, or
+// with the selected one, and the ground truth that follows the history as its own figure
+// "ground_truth") as GLB (opens in Blender), as clip JSON (the contract's clip format) or as CSV.
+// In compare mode each compared model's futures are in the file, named after their model.
 //
-// Mount API (the lead wires it into app.ts):
+// Mount API (app.ts wires it):
 //   const exporter = mountExportPanel(addSection(panel, 'export', 'Export').body, {
-//     shown: () => predictor.last ? shownFromPrediction(clips.current!, predictor.last.start,
-//        historyFrames, predictor.last.prediction, { selected, model: predictor.last.model }) : null,
+//     shown: () => predictor.last ? shownFromRuns(motion, exportRuns(rows, ...), { selected }) : null,
 //     banner, status: o.status,
 //   });
 //   exporter.refresh();   // after each prediction or selection change (enables the buttons)
 import { clipJson } from '../export/clip-json';
 import { csvText } from '../export/csv';
 import { glbBytes } from '../export/glb';
-import type { Shown } from '../export/shown';
+import { modelsText, type Shown } from '../export/shown';
 import { el, type StatusSink } from './dom';
 import type { MessageBanner } from './messages';
 
@@ -40,8 +40,8 @@ export interface ExportPanel {
 
 const FORMATS: { id: ExportFormat; label: string; title: string; type: string }[] = [
   { id: 'glb', label: 'GLB', title: 'Animated joints for Blender or any glTF viewer; the ground truth is the node "ground_truth"', type: 'model/gltf-binary' },
-  { id: 'json', label: 'JSON', title: 'Clip files of the contract (history + one future each; the ground truth as "<clip>.ground_truth")', type: 'application/json' },
-  { id: 'csv', label: 'CSV', title: 'figure, frame, time, joint, x, y, z (metres, y up); the ground truth\'s rows have figure "ground_truth"', type: 'text/csv' },
+  { id: 'json', label: 'JSON', title: 'Clip files of the contract (history + one future each, its source recording the model, seed, controls and foot planting; the ground truth as "<clip>.ground_truth")', type: 'application/json' },
+  { id: 'csv', label: 'CSV', title: 'figure, frame, time, joint, x, y, z (metres, y up); compared, a future\'s figure starts with its model; the ground truth\'s rows have figure "ground_truth"', type: 'text/csv' },
 ];
 
 function download(fileName: string, data: Blob): void {
@@ -53,10 +53,24 @@ function download(fileName: string, data: Blob): void {
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
 
-/** "walk.regression-gru.3-futures" or "walk.regression-gru.sample_2". */
+/** "walk.regression-gru.3-futures", "walk.regression-gru.sample_2" or, compared, "walk.wat-rnn+lcp-vae.6-futures". */
 export function exportBaseName(s: Shown): string {
   const what = s.futures.length === 1 ? `sample_${s.futures[0].sample + 1}` : `${s.futures.length}-futures`;
-  return [s.name, s.model, what].filter(Boolean).join('.');
+  return [s.name, modelsText(s), what].filter(Boolean).join('.');
+}
+
+/** What the export holds, in words: one model's futures, or each compared model's. */
+export function exportDescription(s: Shown): string {
+  const truth = s.truth ? ' and the ground truth' : '';
+  const runs = s.runs.map((r, i) => ({ name: r.label ?? r.model ?? 'a model', n: s.futures.filter((f) => f.run === i).length })).filter((r) => r.n > 0);
+  const of = s.runs.length > 1 ? ` of ${runs.map((r) => r.name).join(' and ')}` : '';
+  const one = (s.selected ?? null) !== null ? s.selected! : s.futures.length === 1 ? s.futures[0].sample : null;
+  if (one !== null) return `The history of ${s.name} with future #${one + 1}${of}${truth}.`;
+  if (s.runs.length > 1) {
+    return `The history of ${s.name} with the futures of ${runs.map((r) => `${r.name} (${r.n})`).join(' and ')}${truth}, `
+      + 'each named after its model (select one to save only it).';
+  }
+  return `The history of ${s.name} with all ${s.futures.length} futures${truth} (select one to save only it).`;
 }
 
 export function mountExportPanel(container: HTMLElement, options: ExportPanelOptions): ExportPanel {
@@ -70,10 +84,7 @@ export function mountExportPanel(container: HTMLElement, options: ExportPanelOpt
     let s: Shown | null = null;
     try { s = options.shown(); } catch { s = null; }
     buttons.forEach((b) => { b.disabled = !s; });
-    const truth = s?.truth ? ' and the ground truth' : '';
-    what.textContent = !s ? 'Predict first: the history and its futures can then be saved.'
-      : s.futures.length === 1 ? `The history of ${s.name} with future #${s.futures[0].sample + 1}${truth}.`
-        : `The history of ${s.name} with all ${s.futures.length} futures${truth} (select one to save only it).`;
+    what.textContent = !s ? 'Predict first: the history and its futures can then be saved.' : exportDescription(s);
   };
 
   const exportAs = async (format: ExportFormat): Promise<string | null> => {

@@ -387,17 +387,17 @@ export class PredictController {
       const controls = rowControls(entry, inputs.controls);
       const from = rowStart(start, n, frames);
       if (from === null) {
-        return { entry, start: 0, controls, error: `${entry.label} needs ${frames} frames of history; the clip has ${start + n} before the futures.` };
+        return { entry, start: 0, controls, plantFeet: inputs.plantFeet, error: `${entry.label} needs ${frames} frames of history; the clip has ${start + n} before the futures.` };
       }
       const history = { positions: clipWindow(m, from, frames), frames, joints: m.joints };
       try {
         const r = await this.client!.predict(`${this.o.viewId}:compare:${entry.id}`, entry.id, history,
           buildRequest(entry, controls, inputs.seed, fps, inputs.plantFeet), undefined, { truth: truthAfter(m, from, frames), skeleton: m.skeleton });
         this.loaded.add(entry.id);
-        return { entry, start: from, controls, prediction: r.prediction, readout: r.readout ?? null };
+        return { entry, start: from, controls, plantFeet: inputs.plantFeet, prediction: r.prediction, readout: r.readout ?? null };
       } catch (err) {
         if (err instanceof Superseded || ticket !== this.ticket) throw err instanceof Superseded ? err : new Superseded();
-        return { entry, start: from, controls, error: `${entry.label} cannot predict from this history: ${(err as Error).message}` };
+        return { entry, start: from, controls, plantFeet: inputs.plantFeet, error: `${entry.label} cannot predict from this history: ${(err as Error).message}` };
       }
     }));
   }
@@ -490,7 +490,7 @@ export class PredictController {
         this.o.banner.show(`The read-out could not be computed: ${(err as Error).message}`, 'warning', 'readout');
       }
     }
-    const all = rows ? [{ entry, start, controls: inputs.controls, prediction: p, readout }, ...rows] : undefined;
+    const all = rows ? [{ entry, start, controls: inputs.controls, plantFeet: inputs.plantFeet, prediction: p, readout }, ...rows] : undefined;
     this.last = { prediction: p, ms, model: entry.id, start, clip: m.name, seed: inputs.seed, controls: inputs.controls, plantFeet: inputs.plantFeet, readout, compare: all };
     this.shownKey = this.keyOf(entry.id, inputs.seed, start, inputs.controls, m);
     this.selected = null;
@@ -533,7 +533,12 @@ export class PredictController {
       readout, outOfRange: Boolean(p.warnings?.length),
       readoutJson: () => (readout ? readoutJson(readout, {
         model: entry.id, model_label: entry.label, model_hash: entry.hash, clip: shown.clip, history_start: shown.start,
-        history_frames: n, seed: shown.seed, controls: shown.controls, fps,
+        history_frames: n, seed: shown.seed, controls: shown.controls, plant_feet: shown.plantFeet !== false, fps,
+        // compare mode: what each other row was asked (its numbers are in Compare methods)
+        ...(shown.compare ? { compared_with: shown.compare.slice(1).map((r) => ({
+          model: r.entry.id, model_hash: r.entry.hash, history_start: r.start, history_frames: r.entry.params.history_frames,
+          controls: r.controls, plant_feet: r.plantFeet, ...(r.error ? { error: r.error } : {}),
+        })) } : {}),
       }) : '{}'),
     });
     if (!current) this.results?.stale(true);

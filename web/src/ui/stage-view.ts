@@ -1,8 +1,8 @@
 // "Seeing what matters", over the stage's bottom-right corner: the camera presets (front, side, top,
 // follow one figure), a toggle that highlights the sample closest to the ground truth (with its
-// per-joint error), and one that hides the ground truth. It also carries the styles of what the
-// viewer adds to each figure's label (the current action, the "stopped" and "closest" badges), so the
-// parts of this feature live together. Placed absolutely: nothing here moves or resizes the stage.
+// per-joint error; in compare mode one in each model's row), and one that hides the ground truth. It
+// also carries the styles of what the viewer adds to each figure's label (the current action, the
+// "stopped" and "closest" badges), so the parts of this feature live together. Placed absolutely: nothing here moves or resizes the stage.
 import { CAMERA_PRESETS, type CameraPreset, type SkeletonView } from '../viewer/viewer';
 import { el } from './dom';
 
@@ -77,14 +77,23 @@ export function mountStageView(viewer: HTMLElement, view: SkeletonView, onChange
   /** A narrow stage (a phone, a small embed) gets the short labels, so the bar keeps to one line. */
   let compact = false;
   const refresh = () => {
-    const b = view.best();
+    // one per row: the page's model alone, or each compared model (its row's own truth)
+    const rows = view.bestRows();
+    const b = rows[0] ?? null;
+    const named = rows.length > 1;
+    const each = rows.map((r) => `${named ? `${r.groupLabel ?? `row ${(r.group ?? 0) + 1}`} ` : ''}#${r.sample + 1} · ${r.cm.toFixed(1)} cm`);
+    const name = compact ? 'Closest' : 'Closest to truth';
     best.disabled = !b;
     best.setAttribute('aria-pressed', String(bestOn && Boolean(b)));
-    best.textContent = bestOn && b ? `${compact ? 'Closest' : 'Closest to truth'}: #${b.sample + 1} · ${b.cm.toFixed(1)} cm` : compact ? 'Closest' : 'Closest to truth';
+    // a narrow stage has no room for several rows' numbers: the labels on stage carry them
+    best.textContent = bestOn && b && !(compact && named) ? `${name}: ${each.join(', ')}` : name;
     best.title = b
-      ? `Highlight the sample closest to the ground truth: the smallest mean per-joint distance to it (world frame), over the ${b.frames} frames of ground truth that follow the history`
+      ? `Highlight the sample closest to the ground truth${named ? ' in each compared model\'s row' : ''}: the smallest mean per-joint distance to it (world frame), `
+        + `over the ${b.frames} frames of ground truth that follow the history${named ? ` (${each.join('; ')})` : ''}`
       : 'Needs futures and the ground truth that follows the history';
-    if (b) best.dataset.sample = String(b.sample); else delete best.dataset.sample;
+    const own = view.best(); // the page's model's row
+    if (own) best.dataset.sample = String(own.sample); else delete best.dataset.sample;
+    if (b) best.dataset.rows = rows.map((r) => `${r.group ?? 0}:${r.sample}`).join(','); else delete best.dataset.rows;
     // there is a ground truth to hide only with futures and a clip that goes on (best() needs both)
     truth.disabled = truthOn && !b;
     truth.setAttribute('aria-pressed', String(truthOn));

@@ -13,6 +13,9 @@ export interface BestSample {
   errors: { sample: number; cm: number }[];
   /** The ground-truth frames compared (the truth may end before the futures do). */
   frames: number;
+  /** Compare mode: the method's row (track.group) and its name. */
+  group?: number;
+  groupLabel?: string;
 }
 
 /** The best prediction sample among `tracks`, or null without a ground-truth track or a sample. A tie
@@ -37,4 +40,22 @@ export function bestSample(tracks: readonly Track[]): BestSample | null {
   let best = errors[0];
   for (const e of errors) if (e.cm < best.cm || (e.cm === best.cm && e.sample < best.sample)) best = e;
   return { sample: best.sample, cm: best.cm, errors, frames: T };
+}
+
+/** Compare mode: the best sample of each method's row (track.group; a prediction alone is row 0),
+ *  each against its own row's truth, in row order. A row without a truth or a sample has none, and a
+ *  row whose tracks do not fit its truth has none either: the other rows keep theirs. */
+export function bestPerRow(tracks: readonly Track[]): BestSample[] {
+  const rows = [...new Set(tracks.map((t) => t.group ?? 0))].sort((a, b) => a - b);
+  return rows.flatMap((group) => {
+    const own = tracks.filter((t) => (t.group ?? 0) === group);
+    let best: BestSample | null;
+    try {
+      best = bestSample(own);
+    } catch {
+      best = null; // a track that does not fit the truth: no highlight in this row, the figures still draw
+    }
+    const label = own.find((t) => t.groupLabel)?.groupLabel;
+    return best ? [{ ...best, group, ...(label ? { groupLabel: label } : {}) }] : [];
+  });
 }

@@ -38,6 +38,7 @@ class InertView implements SkeletonView {
   setBestShown(): void {}
   setTruthShown(): void {}
   best(): null { return null; }
+  bestRows(): [] { return []; }
   viewDirection(): null { return null; }
   onTracks(): void {}
   setLayout(mode: LayoutMode): void { this.layout = mode; }

@@ -9,7 +9,7 @@ import { CSS2DObject } from 'three/examples/jsm/renderers/CSS2DRenderer.js';
 import type { Skeleton } from '../contract/types';
 import { facingAngle } from '../motion/facing';
 import { SkeletonFigures, type FigureDraw } from './figures';
-import { bestSample, type BestSample } from './best';
+import { bestPerRow, type BestSample } from './best';
 import { layoutTracks, ROW_SPACING, type Layout, type LayoutMode } from './layout';
 import { identityColour, identityCss } from './palette';
 import { RootPaths } from './paths';
@@ -76,8 +76,11 @@ export interface SkeletonView {
   setBestShown(on: boolean): void;
   /** Show or hide the ground truth's figure, label and path (kept across new tracks). */
   setTruthShown(on: boolean): void;
-  /** The sample closest to the ground truth among the tracks given, or null (no truth, no samples). */
+  /** The sample closest to the ground truth among the tracks given, or null (no truth, no samples);
+   *  in compare mode, in the page's own model's row (group 0). */
   best(): BestSample | null;
+  /** Compare mode: the closest sample of each method's row, in row order (one model: its one row). */
+  bestRows(): readonly BestSample[];
   /** Called after every setTracks() and clear(). */
   onTracks(handler: () => void): void;
   dispose(): void;
@@ -141,7 +144,8 @@ export class Viewer implements SkeletonView {
   private preset: CameraPreset = 'auto';
   private bestShown = false;
   private truthShown = true;
-  private bestOf: BestSample | null = null;
+  /** The closest sample of each row (one model: one row); highlighted while bestShown. */
+  private bests: readonly BestSample[] = [];
   private trackListeners: (() => void)[] = [];
   private skeleton: Skeleton | null = null;
   /** Per track, per stored frame: the box of its pose. */
@@ -185,12 +189,8 @@ export class Viewer implements SkeletonView {
       this.headJoint = Math.max(0, skeleton.joints.indexOf('head'));
     }
     this.givenBoxes = tracks.map(poseBoxes);
-    try {
-      // compare mode: the page's own model's row (group 0), whose truth and samples the toggle is about
-      this.bestOf = bestSample(tracks.filter((tr) => (tr.group ?? 0) === 0));
-    } catch {
-      this.bestOf = null; // a track that does not fit the truth: no highlight, the figures still draw
-    }
+    // compare mode: each method's row against its own truth, so the toggle marks one sample per row
+    this.bests = bestPerRow(tracks);
     this.shownTracks();
     if (this.selected !== null && !tracks.some((tr) => tr.sample === this.selected)) this.selected = null;
     this.arrange(!options.keepView);
@@ -200,7 +200,7 @@ export class Viewer implements SkeletonView {
   clear(): void {
     this.given = [];
     this.givenBoxes = [];
-    this.bestOf = null;
+    this.bests = [];
     this.shownTracks();
     this.arrange(false);
     for (const l of this.trackListeners) l();
@@ -229,7 +229,25 @@ export class Viewer implements SkeletonView {
     this.arrange(this.mode === 'side' || this.preset === 'follow');
   }
 
-  best(): BestSample | null { return this.bestOf; }
+  best(): BestSample | null { return this.bests.find((b) => b.group === 0) ?? null; }
+
+  bestRows(): readonly BestSample[] { return this.bests; }
+
+  /** The track is a highlighted closest sample of its row. */
+  private isBest(track: Track | undefined): boolean {
+    return this.bestShown && track?.role === 'prediction' && this.bests.some((b) => b.group === (track.group ?? 0) && b.sample === track.sample);
+  }
+
+  /** The eye is led to the track: it is the selected sample, or else a highlighted closest one. */
+  private focused(track: Track | undefined): boolean {
+    if (this.selected !== null) return track?.role === 'prediction' && track.sample === this.selected;
+    return this.isBest(track);
+  }
+
+  /** Some figure is focused (a selection, or the highlight with a closest sample): the others are muted. */
+  private anyFocus(): boolean {
+    return this.selected !== null || (this.bestShown && this.bests.length > 0);
+  }
 
   viewDirection(): [number, number, number] | null {
     const d = this.stage.camera.position.clone().sub(this.stage.controls.target).normalize();
@@ -249,7 +267,7 @@ export class Viewer implements SkeletonView {
   /** The sample the eye is led to: the selected one, else the highlighted best. */
   private focus(): number | null {
     if (this.selected !== null) return this.selected;
-    return this.bestShown && this.bestOf ? this.bestOf.sample : null;
+    return this.bestShown ? this.best()?.sample ?? null : null;
   }
 
   /** Frame the figures again from the current preset (after a preset or a followed figure changes). */
@@ -309,7 +327,7 @@ export class Viewer implements SkeletonView {
         track: track.id, role: track.role, sample: track.sample, cell: p.cell, shared: p.shared,
         label: slot?.element.textContent ?? '', colour: this.figuresMesh.identityHex(i), box,
         action: status.action, stopped: status.stopped,
-        best: this.bestShown && track.role === 'prediction' && this.bestOf?.sample === track.sample && (track.group ?? 0) === 0,
+        best: this.isBest(track),
         group: track.group,
       };
     });
@@ -537,27 +555,25 @@ export class Viewer implements SkeletonView {
       const draw = this.draws[i];
       poseInto(track, pose, draw.pose);
       const isPrediction = track.role === 'prediction';
-      const focus = this.focus();
-      const selected = isPrediction && focus !== null && track.sample === focus;
+      const selected = this.focused(track);
       draw.tint = {
         role: track.role, sample: track.sample, selected,
-        muted: isPrediction && focus !== null && !selected, ended: pose.state === 'ended',
+        muted: isPrediction && this.anyFocus() && !selected, ended: pose.state === 'ended',
       };
       visible.push(draw);
       this.drawn.push(i);
       shown.add(i);
     });
     this.figuresMesh.draw(visible);
-    const focus = this.focus();
-    const best = this.bestShown ? this.bestOf?.sample ?? null : null;
+    const anyFocus = this.anyFocus();
     for (const l of this.labels) {
       const pi = l.placements.find((i) => shown.has(i));
       l.object.visible = pi !== undefined;
       l.element.classList.toggle('figure-label-selected', this.selected !== null && l.sample === this.selected);
-      l.element.classList.toggle('figure-label-muted', focus !== null && l.sample !== undefined && l.sample !== focus);
-      l.element.classList.toggle('figure-label-best', best !== null && l.sample === best && (this.tracks[l.track]?.group ?? 0) === 0);
+      l.element.classList.toggle('figure-label-muted', anyFocus && l.sample !== undefined && !this.focused(this.tracks[l.track]));
+      l.element.classList.toggle('figure-label-best', this.isBest(this.tracks[l.track]));
       if (pi === undefined) continue;
-      this.labelStatus(l, best);
+      this.labelStatus(l);
       const p = this.arrangement.placements[pi];
       const pose = this.draws[pi].pose;
       const j = this.headJoint * 3;
@@ -572,11 +588,11 @@ export class Viewer implements SkeletonView {
 
   /** A label's action and badges at the current frame; the DOM is touched only when they change
    *  (labels are redrawn every frame). */
-  private labelStatus(l: LabelSlot, best: number | null): void {
+  private labelStatus(l: LabelSlot): void {
     const track = this.tracks[l.track];
     if (!track || track.role !== 'prediction') return;
     const { action, stopped } = figureStatus(track, this.t);
-    const isBest = best !== null && l.sample === best && (track.group ?? 0) === 0;
+    const isBest = this.isBest(track);
     // a hidden part has no text either: the label's text is what it shows (FigureInfo.label); a badge
     // is a pill after its " · "
     const set = (e: HTMLElement, text: string, pill: boolean) => {
