@@ -45,6 +45,9 @@ export class Stage {
   private readonly resizeObserver: ResizeObserver;
   private readonly colourScheme = window.matchMedia('(prefers-color-scheme: dark)');
   private readonly onScheme = () => { this.applyTheme(); };
+  /** Called on every render after the camera has moved and before the labels are drawn: labels that
+   *  are placed on screen (viewer.ts) are placed from where the camera is then. */
+  beforeLabels: (() => void) | null = null;
 
   /** Throws WebGLUnavailableError when no usable WebGL 2 context can be made. */
   constructor(private readonly container: HTMLElement, private readonly onContextLost?: (lost: boolean) => void) {
@@ -116,6 +119,7 @@ export class Stage {
   /** Render now (the labels too). */
   render(): void {
     this.renderer.render(this.scene, this.camera);
+    this.beforeLabels?.();
     this.labels.render(this.scene, this.camera);
   }
 
