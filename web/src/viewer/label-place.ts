@@ -65,21 +65,33 @@ export function placeLabel(home: Spot, size: { width: number; height: number }, 
   }
   const grid = offsets(step, reach);
   const inside = (r: Rect) => r.left >= bounds.left && r.right <= bounds.right && r.top >= bounds.top && r.bottom <= bounds.bottom;
-  const covered = (r: Rect) => {
-    let sum = 0;
-    for (const o of obstacles) sum += overlap(r, o, gap);
-    return sum;
-  };
+  // only what a spot within reach can touch
+  const w = size.width / 2 + reach + gap;
+  const near = obstacles.filter((o) => o.right > home.x - w && o.left < home.x + w
+    && o.bottom > home.y - size.height - reach - gap && o.top < home.y + reach + gap);
   // home is kept when free even if the camera has put it past the stage's edge (as every other label is)
-  let least = covered(labelRect(home, size));
-  if (least === 0) return { ...home, clear: true };
+  let blocker = near.findIndex((o) => overlap(labelRect(home, size), o, gap) > 0);
+  if (blocker < 0) return { ...home, clear: true };
+  // neighbouring spots are mostly blocked by the same obstacle: it is tried first
+  const free = (r: Rect) => {
+    if (overlap(r, near[blocker], gap) > 0) return false;
+    for (let k = 0; k < near.length; k++) if (overlap(r, near[k], gap) > 0) { blocker = k; return false; }
+    return true;
+  };
+  for (let i = 2; i < grid.length; i += 2) {
+    const at = { x: home.x + grid[i], y: home.y + grid[i + 1] };
+    const r = labelRect(at, size);
+    if (inside(r) && free(r)) return { ...at, clear: true };
+  }
+  // nothing free within reach: the spot that covers the least
+  const covered = (r: Rect) => near.reduce((sum, o) => sum + overlap(r, o, gap), 0);
   let best: Placed = { ...home, clear: false };
+  let least = covered(labelRect(home, size));
   for (let i = 2; i < grid.length; i += 2) {
     const at = { x: home.x + grid[i], y: home.y + grid[i + 1] };
     const r = labelRect(at, size);
     if (!inside(r)) continue;
     const c = covered(r);
-    if (c === 0) return { ...at, clear: true };
     if (c < least) { least = c; best = { ...at, clear: false }; }
   }
   return best;

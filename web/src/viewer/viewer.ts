@@ -130,8 +130,9 @@ interface LabelSlot {
   lift: number;
   /** Where the label sits in the world (over its figure's head): the ground truth's may be moved on screen. */
   home: Vector3;
-  /** Its size in CSS px, measured once per text and classes (a layout read each frame costs at K = 50). */
-  size?: { width: number; height: number; key: string };
+  /** Its size in CSS px as last laid out (labelSizes): reading it in the render would force a layout
+   *  each frame, 3-6 ms at K = 50 in software rendering. */
+  size: { width: number; height: number };
 }
 
 export class Viewer implements SkeletonView {
@@ -160,6 +161,18 @@ export class Viewer implements SkeletonView {
   private drawn: number[] = [];
   private labels: LabelSlot[] = [];
   private readonly scratch = new Vector3();
+  /** Reports each label's size after layout; a change draws again, so a label placed by a stale size is placed anew. */
+  private readonly labelSizes = new ResizeObserver((entries) => {
+    let changed = false;
+    for (const e of entries) {
+      const slot = this.labels.find((l) => l.element === e.target);
+      const box = e.borderBoxSize[0];
+      if (!slot || !box || (slot.size.width === box.inlineSize && slot.size.height === box.blockSize)) continue;
+      slot.size = { width: box.inlineSize, height: box.blockSize };
+      changed = true;
+    }
+    if (changed && this.labels.some((l) => l.object.visible && this.tracks[l.track]?.role === 'truth')) this.stage.invalidate();
+  });
   /** Per root path (placement order): whose it is, for its opacity under a selection. */
   private pathOwners: { sample?: number; role: Track['role'] }[] = [];
   private pick: ((sample: number | null) => void) | null = null;
@@ -341,7 +354,7 @@ export class Viewer implements SkeletonView {
     if (!truths.length) return;
     const camera = this.stage.camera;
     camera.updateMatrixWorld();
-    const { width, height } = this.stage.size;
+    const { width, height } = this.stage.drawnSize;
     const v = this.scratch;
     const onScreen = (at: Vector3) => {
       v.copy(at).project(camera);
@@ -351,29 +364,19 @@ export class Viewer implements SkeletonView {
     for (const l of this.labels) {
       if (!l.object.visible || truths.includes(l)) continue;
       const s = onScreen(l.home);
-      if (s.shown) obstacles.push(labelRect(s, this.labelSize(l)));
+      if (s.shown) obstacles.push(labelRect(s, l.size));
     }
     const bounds = { left: 0, top: 0, right: width, bottom: height };
     for (const l of truths) {
       l.object.position.copy(l.home);
       const s = onScreen(l.home);
       if (!s.shown) continue; // behind the camera: CSS2DRenderer hides it
-      const size = this.labelSize(l);
+      const size = l.size;
       const at = placeLabel(s, size, obstacles, bounds);
       // back into the world at the head's depth, where CSS2DRenderer projects it to that spot
       if (at.x !== s.x || at.y !== s.y) l.object.position.set((at.x / width) * 2 - 1, 1 - (at.y / height) * 2, s.z).unproject(camera);
       obstacles.push(labelRect(at, size));
     }
-  }
-
-  private labelSize(l: LabelSlot): { width: number; height: number } {
-    const key = `${l.element.className}|${l.element.textContent}`;
-    if (l.size?.key === key) return l.size;
-    // not drawn yet (CSS2DRenderer shows it in this same render)
-    if (l.element.style.display === 'none') l.element.style.display = '';
-    const size = { width: l.element.offsetWidth, height: l.element.offsetHeight, key };
-    if (size.width > 0) l.size = size;
-    return size;
   }
 
   /** Whether placement `p` shows a figure at timeline position `t`. */
@@ -529,6 +532,7 @@ export class Viewer implements SkeletonView {
   }
 
   private clearLabels(): void {
+    this.labelSizes.disconnect();
     for (const l of this.labels) l.element.remove();
     this.labelGroup.clear();
     this.labels = [];
@@ -583,7 +587,8 @@ export class Viewer implements SkeletonView {
       // futures, shares the first step with the ground truth).
       const lift = LABEL_LIFT + (this.mode === 'overlay' || this.arrangement.cells <= 1 ? LABEL_STEP * rank : 0);
       if (track.role !== 'history') ranks.set(owner.cell, rank + 1);
-      this.labels.push({ object, element, placements, sample: track.sample, lift, track: owner.track, action, stopped, best, home: new Vector3() });
+      this.labels.push({ object, element, placements, sample: track.sample, lift, track: owner.track, action, stopped, best, home: new Vector3(), size: { width: 0, height: 0 } });
+      this.labelSizes.observe(element);
     }
   }
 
