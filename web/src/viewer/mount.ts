@@ -39,6 +39,7 @@ class InertView implements SkeletonView {
   setTruthShown(): void {}
   best(): null { return null; }
   viewDirection(): null { return null; }
+  shownTracks(): [] { return []; }
   onTracks(): void {}
   setLayout(mode: LayoutMode): void { this.layout = mode; }
   setFrame(): void {}

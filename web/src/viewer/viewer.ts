@@ -79,7 +79,9 @@ export interface SkeletonView {
   setTruthShown(on: boolean): void;
   /** The sample closest to the ground truth among the tracks given, or null (no truth, no samples). */
   best(): BestSample | null;
-  /** Called after every setTracks() and clear(). */
+  /** What is on stage: each track drawn, in order (a hidden ground truth is not). */
+  shownTracks(): readonly Pick<Track, 'role' | 'sample' | 'group'>[];
+  /** Called after every setTracks() and clear(), and when the ground truth is shown or hidden. */
   onTracks(handler: () => void): void;
   dispose(): void;
 }
@@ -211,7 +213,7 @@ export class Viewer implements SkeletonView {
     } catch {
       this.bestOf = null; // a track that does not fit the truth: no highlight, the figures still draw
     }
-    this.shownTracks();
+    this.keepShown();
     if (this.selected !== null && !tracks.some((tr) => tr.sample === this.selected)) this.selected = null;
     this.arrange(!options.keepView);
     for (const l of this.trackListeners) l();
@@ -221,7 +223,7 @@ export class Viewer implements SkeletonView {
     this.given = [];
     this.givenBoxes = [];
     this.bestOf = null;
-    this.shownTracks();
+    this.keepShown();
     this.arrange(false);
     for (const l of this.trackListeners) l();
   }
@@ -244,9 +246,10 @@ export class Viewer implements SkeletonView {
   setTruthShown(on: boolean): void {
     if (on === this.truthShown) return;
     this.truthShown = on;
-    this.shownTracks();
+    this.keepShown();
     // side by side the truth has a cell of its own: the grid changes, so it is framed again
     this.arrange(this.mode === 'side' || this.preset === 'follow');
+    for (const l of this.trackListeners) l();
   }
 
   best(): BestSample | null { return this.bestOf; }
@@ -258,8 +261,10 @@ export class Viewer implements SkeletonView {
 
   onTracks(handler: () => void): void { this.trackListeners.push(handler); }
 
+  shownTracks(): readonly Pick<Track, 'role' | 'sample' | 'group'>[] { return this.tracks; }
+
   /** The tracks drawn: those given, less the ground truth when it is hidden. */
-  private shownTracks(): void {
+  private keepShown(): void {
     const keep = this.given.map((tr) => this.truthShown || tr.role !== 'truth');
     this.tracks = this.given.filter((_, i) => keep[i]);
     this.frameBoxes = this.givenBoxes.filter((_, i) => keep[i]);
