@@ -6,7 +6,7 @@ import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page, Request } from 'playwright-core';
 import { openBrowser, type BrowserSession } from './browser';
 import { defaultHistory, index, stageModel } from './data';
-import { projectPage } from './host-pages';
+import { blogPage, projectPage, type HostPageParts } from './host-pages';
 import { pixelStats } from './pixels';
 
 const baseUrl = inject('baseUrl');
@@ -170,20 +170,27 @@ describe('embed.html in an iframe', () => {
   });
 });
 
-// A good citizen of someone else's page (issue 29 item 6): on a project page with a CSS reset, a
-// Bulma-like stylesheet and html { font-size: 62.5% }, under a dark system preference. One page load
-// carries the desktop checks, a second the phone's.
+// A good citizen of someone else's page (issue 29 item 6), under a dark system preference: on a
+// project page with a CSS reset, a Bulma-like stylesheet and html { font-size: 62.5% }, and in a
+// minimal blog (a narrow serif column, the same root font size). One page load per host carries the
+// desktop checks, another the phone's on the project page.
 const STOCHASTIC = stageModel.id;
 const IFRAME_SRC = `${baseUrl}embed.html?model=${STOCHASTIC}&clip=${CLIP_B}&k=5&seed=3&controls=full`;
 /** The README's responsive iframe snippet (README "Embedding"). */
 const RESPONSIVE = 'width: 100%; max-width: 720px; aspect-ratio: 3 / 2; min-height: 400px; border: 0';
-const PROJECT = projectPage({
+/** The same widgets on every host: a minimal one (display: block), the README's iframe, a 320 px one. */
+const PARTS: HostPageParts = {
   teaser: `<script type="module" src="${baseUrl}assets/motion-futures.js"></script>
   <motion-futures id="w" model="${STOCHASTIC}" clip="${CLIP_B}" k="5" seed="3" theme="light" autoplay
     style="display: block; height: 480px; max-width: 720px; margin: 0 auto 24px"></motion-futures>
   <iframe id="fr" src="${IFRAME_SRC}" title="motion-futures" style="${RESPONSIVE}; display: block; margin: 0 auto"></iframe>`,
   results: `<motion-futures id="n" model="${STOCHASTIC}" clip="${CLIP_B}" k="5" seed="4" style="height: 360px"></motion-futures>`,
-});
+};
+const PROJECT = projectPage(PARTS);
+const HOSTS = [
+  { name: 'a project page', shot: 'project', body: PROJECT },
+  { name: 'a minimal blog', shot: 'blog', body: blogPage(PARTS) },
+];
 const SHOTS = '/tmp/h29c';
 
 type Widget = HTMLElement & { app: import('../../web/src/ui/app').App };
@@ -267,7 +274,20 @@ async function invisibleTabStops(page: Page, presses: number): Promise<string[]>
   return bad;
 }
 
-describe('the embed on a project page', () => {
+/** Scroll so that widget `id` sits `below` px under the top of the window (with page left below it). */
+const showAt = (page: Page, id: string, below: number) => page.evaluate(([id, below]) => {
+  window.scrollTo(0, document.getElementById(id as string)!.getBoundingClientRect().top + window.scrollY - (below as number));
+}, [id, below] as const);
+/** Widget `id` (playing) on screen and held at frame 20. A widget that autoplays while unseen (the blog's,
+ *  below the fold) starts once seen (visibility.ts): it is paused after that, not before. */
+async function stillAt20(page: Page, id: string, below: number): Promise<void> {
+  await showAt(page, id, below);
+  await expect.poll(() => playLabel(page, id)).toBe('Pause');
+  await page.evaluate((i) => { const p = (document.getElementById(i) as Widget).app.player; p.pause(); p.seek(20); }, id);
+  await settle(page);
+}
+
+describe.each(HOSTS)('the embed on $name', ({ shot, body }) => {
   let session: BrowserSession;
   let page: Page;
   const swRequests: string[] = [];
@@ -278,7 +298,7 @@ describe('the embed on a project page', () => {
     page = session.page;
     session.context.on('request', (r: Request) => { if (/\/sw\.js$|workbox/.test(r.url())) swRequests.push(r.url()); });
     await session.context.addInitScript(COUNT_DRAWS);
-    await page.route(HOST_URL, (route) => route.fulfill({ status: 200, contentType: 'text/html', body: PROJECT }));
+    await page.route(HOST_URL, (route) => route.fulfill({ status: 200, contentType: 'text/html', body }));
     await page.goto(HOST_URL);
     await Promise.all([done(page, 'w'), done(page, 'n'),
       page.frameLocator('#fr').locator('motion-futures[data-predict-status="done"]').waitFor({ state: 'attached', timeout: 120_000 })]);
@@ -325,8 +345,7 @@ describe('the embed on a project page', () => {
   });
 
   it('lets the page scroll under the wheel; ctrl + wheel, or a click first, zooms', async () => {
-    await page.evaluate(() => { const p = (document.getElementById('w') as Widget).app.player; p.pause(); p.seek(20); });
-    await page.evaluate(() => window.scrollTo(0, 200));
+    await stillAt20(page, 'w', 60);
     const v = (await page.locator('#w #viewer').boundingBox())!;
     await page.mouse.move(v.x + v.width / 2, v.y + v.height / 2);
     const size0 = await figureHeight(page, 'w');
@@ -336,7 +355,7 @@ describe('the embed on a project page', () => {
     expect(await page.locator('#w .gesture-hint').textContent()).toMatch(/Ctrl \+ scroll to zoom/);
     expect(await figureHeight(page, 'w'), 'the wheel did not zoom').toBeCloseTo(size0, 0);
 
-    await page.evaluate(() => window.scrollTo(0, 200));
+    await showAt(page, 'w', 60);
     await settle(page);
     const y1 = await page.evaluate(() => window.scrollY);
     await page.keyboard.down('Control');
@@ -359,7 +378,8 @@ describe('the embed on a project page', () => {
   });
 
   it('stops drawing while scrolled out of view, and plays on when back', async () => {
-    await page.evaluate(() => { window.scrollTo(0, 150); (document.getElementById('w') as Widget).app.player.play(); });
+    await showAt(page, 'w', 60);
+    await page.evaluate(() => (document.getElementById('w') as Widget).app.player.play());
     await expect.poll(() => playLabel(page, 'w')).toBe('Pause');
     const a = await draws(page, 'w');
     await page.waitForTimeout(600);
@@ -370,13 +390,13 @@ describe('the embed on a project page', () => {
     const b = await draws(page, 'w');
     await page.waitForTimeout(800);
     expect((await draws(page, 'w')) - b, 'frames drawn in 0.8 s off screen').toBe(0);
-    await page.evaluate(() => window.scrollTo(0, 150));
+    await showAt(page, 'w', 60);
     await expect.poll(() => playLabel(page, 'w')).toBe('Pause');
     const c = await draws(page, 'w');
     await expect.poll(() => draws(page, 'w').then((d) => d - c)).toBeGreaterThan(3);
   });
 
-  it('fits a 320 px column: the playback bar wraps without overlap; full controls all reachable in 720 x 480', async () => {
+  it('fits a 320 px column: the playback bar wraps without overlap; full controls all reachable in the README\'s iframe', async () => {
     const n = page.locator('#n');
     await n.scrollIntoViewIfNeeded();
     expect((await n.boundingBox())!.width).toBe(320);
@@ -396,7 +416,11 @@ describe('the embed on a project page', () => {
 
     const frame = page.frame({ url: /embed\.html/ })!;
     await page.locator('#fr').scrollIntoViewIfNeeded();
-    expect(await page.locator('#fr').boundingBox()).toMatchObject({ width: 720, height: 480 });
+    // the README's snippet: as wide as the column up to 720 px (720 x 480 on the project page), at 3 : 2
+    const fr = (await page.locator('#fr').boundingBox())!;
+    const column = await page.locator('#fr').evaluate((f) => f.parentElement!.clientWidth - parseFloat(getComputedStyle(f.parentElement!).paddingLeft) - parseFloat(getComputedStyle(f.parentElement!).paddingRight));
+    expect(fr.width).toBe(Math.min(720, column));
+    expect(fr.height).toBeCloseTo(fr.width / 1.5, 0);
     await reachable(frame);
     await frame.locator('.panel-toggle').click();
     expect(await frame.locator('#panel').isVisible()).toBe(false);
@@ -405,10 +429,96 @@ describe('the embed on a project page', () => {
   it('has no invisible tab stops', async () => {
     await page.evaluate(() => window.scrollTo(0, 0));
     expect(await invisibleTabStops(page, 45)).toEqual([]);
-    await page.evaluate(() => window.scrollTo(0, 0));
-    await page.locator('#w').evaluate((h) => { (h as Widget).app.player.pause(); (h as Widget).app.player.seek(20); });
-    await settle(page);
-    await page.screenshot({ path: `${SHOTS}/embed-project-desktop.png` });
+    await stillAt20(page, 'w', 40);
+    await page.screenshot({ path: `${SHOTS}/embed-${shot}-desktop.png` });
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+});
+
+// The minimal embed's legend (issue 29 item 7): which colour is the history, the ground truth and each
+// sample, in the figures' own colours, on a phone: a widget as wide as the 390 px screen, and one of 320 px.
+describe("the minimal embed's legend", () => {
+  let session: BrowserSession;
+  let page: Page;
+  const PHONE = hostPage(`<script type="module" src="${baseUrl}assets/motion-futures.js"></script>
+<motion-futures id="p" model="${STOCHASTIC}" clip="${CLIP_B}" k="5" seed="3" style="height: 480px"></motion-futures>
+<motion-futures id="q" model="${STOCHASTIC}" clip="${CLIP_B}" k="5" seed="3" style="height: 420px; width: 320px"></motion-futures>`)
+    .replace('margin: 1rem', 'margin: 0');
+
+  beforeAll(async () => {
+    session = await openBrowser({ viewport: { width: 390, height: 844 } });
+    page = session.page;
+    await page.route(HOST_URL, (route) => route.fulfill({ status: 200, contentType: 'text/html', body: PHONE }));
+    await page.goto(HOST_URL);
+    await Promise.all([done(page, 'p'), done(page, 'q')]);
+  });
+  afterAll(async () => { await session?.close(); });
+
+  for (const [id, width] of [['p', 390], ['q', 320]] as const) {
+    it(`names the history, the ground truth and #1-#5 in the figures' colours, within a ${width} px widget`, async () => {
+      await page.locator(`#${id}`).scrollIntoViewIfNeeded();
+      expect((await page.locator(`#${id}`).boundingBox())!.width).toBe(width);
+      const legend = page.locator(`#${id}`).getByTestId('mini-legend');
+      expect(await legend.isVisible()).toBe(true);
+      // what each entry says, and its swatch's colour as "#rrggbb"
+      const entries = () => legend.evaluate((ul) => [...ul.querySelectorAll('li')].map((li) => {
+        const [r, g, b] = getComputedStyle(li.querySelector('.mini-swatch')!).backgroundColor.match(/\d+/g)!.map(Number);
+        return { text: li.textContent, role: li.dataset.role, sample: li.dataset.sample, colour: `#${[r, g, b].map((v) => v.toString(16).padStart(2, '0')).join('')}` };
+      }));
+      const shown = await entries();
+      expect(shown.map((e) => e.text)).toEqual(['history', 'ground truth', '#1', '#2', '#3', '#4', '#5']);
+      // the colours the GPU draws the figures' heads in: the history's in its phase, the others' at the end
+      const colours = (frame: number) => page.evaluate(([id, frame]) => {
+        const app = (document.getElementById(id as string) as Widget).app;
+        app.player.pause();
+        app.player.seek(frame < 0 ? app.player.state.length - 1 : frame as number);
+        return app.view.figures().map((f) => ({ role: f.role, sample: f.sample === undefined ? undefined : String(f.sample), colour: f.colour }));
+      }, [id, frame] as const);
+      const drawn = [...(await colours(0)), ...(await colours(-1))];
+      for (const e of shown) {
+        const figure = drawn.find((f) => f.role === e.role && f.sample === e.sample);
+        expect(figure, `a figure for ${e.text}`).toBeDefined();
+        expect(e.colour, e.text).toBe(figure!.colour);
+      }
+
+      // it fits: inside the widget, nothing clipped, above the playback bar and apart from it; no tab stop
+      const fit = await page.evaluate((id) => {
+        const root = document.getElementById(id)!.shadowRoot!;
+        const host = document.getElementById(id)!.getBoundingClientRect();
+        const ul = root.querySelector<HTMLElement>('.mini-legend')!;
+        const box = ul.getBoundingClientRect();
+        const bar = root.querySelector('.playback-bar')!.getBoundingClientRect();
+        const items = [...ul.querySelectorAll('li')].map((li) => li.getBoundingClientRect());
+        return {
+          inside: box.left >= host.left && box.right <= host.right && box.top >= host.top && box.bottom <= host.bottom
+            && items.every((r) => r.left >= box.left && r.right <= box.right && r.top >= box.top && r.bottom <= box.bottom),
+          clipped: ul.scrollWidth > ul.clientWidth + 1 || ul.scrollHeight > ul.clientHeight + 1,
+          aboveBar: box.bottom <= bar.top, lines: new Set(items.map((r) => Math.round(r.top))).size,
+          focusable: ul.querySelectorAll('a, button, input, select, [tabindex]').length + (ul.hasAttribute('tabindex') ? 1 : 0),
+        };
+      }, id);
+      expect(fit).toEqual({ inside: true, clipped: false, aboveBar: true, lines: fit.lines, focusable: 0 });
+      expect(fit.lines, 'one or two lines').toBeLessThanOrEqual(2);
+      await page.evaluate((id) => { document.getElementById(id)!.scrollIntoView({ block: 'start' }); (document.getElementById(id) as Widget).app.player.seek(20); }, id);
+      await settle(page);
+      mkdirSync(SHOTS, { recursive: true });
+      await page.locator(`#${id}`).screenshot({ path: `${SHOTS}/embed-legend-${width}.png` });
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    });
+  }
+
+  it('follows the stage: the ground truth hidden leaves the legend, K = 7 adds #6 and #7', async () => {
+    const legendTexts = () => page.locator('#p').getByTestId('mini-legend').locator('li').allTextContents();
+    await page.locator('#p').scrollIntoViewIfNeeded();
+    await page.locator('#p .stage-view button', { hasText: /Truth/ }).click();
+    await expect.poll(legendTexts).toEqual(['history', '#1', '#2', '#3', '#4', '#5']);
+    await page.locator('#p .stage-view button', { hasText: /Truth/ }).click();
+    await page.evaluate(async () => {
+      const app = (document.getElementById('p') as Widget).app;
+      app.predictor.setInputs({ controls: { k: 7 } });
+      await app.predictor.predict();
+    });
+    await expect.poll(legendTexts).toEqual(['history', 'ground truth', '#1', '#2', '#3', '#4', '#5', '#6', '#7']);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 });

@@ -1,6 +1,7 @@
-// Host pages for the embed tests: what a widget meets on someone else's site. A project page as the
-// template most vision papers use builds it (a CSS reset, a Bulma-like stylesheet, and
-// html { font-size: 62.5% } as many sites set for 1rem = 10px), long enough that the page scrolls.
+// Host pages for the embed tests: what a widget meets on someone else's site, each long enough that
+// the page scrolls and with html { font-size: 62.5% } as many sites set for 1rem = 10px. A project
+// page as the template most vision papers use builds it (a CSS reset, a Bulma-like stylesheet), and a
+// minimal blog (one narrow serif column of long paragraphs, no reset, no framework).
 
 /** A CSS reset of the usual kind (everything zeroed, box-sizing for all). */
 const RESET = `
@@ -31,16 +32,17 @@ const LOREM = 'We predict many plausible futures of a human motion from a short 
   + 'Each sample is drawn from the model; the ground truth is what the person did. ';
 
 /** Paragraphs of filler, so the page scrolls past the widgets. */
-const filler = (n: number) => Array.from({ length: n }, () => `<p>${LOREM.repeat(3)}</p>`).join('\n');
+const filler = (n: number, long = 3) => Array.from({ length: n }, () => `<p>${LOREM.repeat(long)}</p>`).join('\n');
 
-export interface ProjectPageParts {
-  /** The script include and widgets in the teaser section. */
+/** What a host page holds, wherever it puts it. */
+export interface HostPageParts {
+  /** The script include and widgets in the teaser section (the blog: a figure in the text). */
   teaser: string;
-  /** Widgets further down (a narrow column beside text). */
+  /** Widgets further down, in a 320 px column beside text. */
   results: string;
 }
 
-export function projectPage(parts: ProjectPageParts): string {
+export function projectPage(parts: HostPageParts): string {
   return `<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
 <title>Motion Futures: a project page</title><style>${RESET}${BULMA_LIKE}</style></head>
@@ -60,4 +62,33 @@ export function projectPage(parts: ProjectPageParts): string {
   <div class="content">${filler(6)}</div>
 </div></section>
 </body></html>`;
+}
+
+/** A minimal blog's stylesheet: a narrow column, a serif body font, a 320 px figure floated beside the text. */
+const BLOG = `
+html { font-size: 62.5%; }
+body { margin: 0; background: #fdfdf8; color: #222; font: 1.9rem/1.65 Georgia, 'DejaVu Serif', serif; }
+main { max-width: 64rem; margin: 0 auto; padding: 3.2rem 1.6rem; }
+h1 { font-size: 3.4rem; line-height: 1.2; margin: 0 0 0.8rem; }
+.byline { color: #777; font-style: italic; }
+p { margin: 0 0 1.6rem; }
+a { color: #8a2be2; }
+figure { margin: 2.4rem 0; }
+figcaption { font-size: 1.5rem; color: #666; margin-top: 0.6rem; }
+.aside { float: right; width: 320px; margin: 0 0 1.6rem 2.4rem; }
+@media (max-width: 600px) { .aside { float: none; margin: 0 auto 1.6rem; } }`;
+
+export function blogPage(parts: HostPageParts): string {
+  return `<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
+<title>Notes: predicting human motion</title><style>${BLOG}</style></head>
+<body><main>
+  <h1>What a motion model thinks happens next</h1>
+  <p class="byline">Posted by someone who read the paper · <a href="#comments">3 comments</a></p>
+  ${filler(3, 5)}
+  <figure>${parts.teaser}<figcaption>Five futures from the same history; green is what the person did.</figcaption></figure>
+  ${filler(2, 5)}
+  <div class="aside">${parts.results}</div>
+  ${filler(8, 5)}
+</main></body></html>`;
 }

@@ -177,6 +177,86 @@ describe('many tracks', () => {
   });
 });
 
+describe("the ground truth's label", () => {
+  it('covers no other figure and no other label, overlaid and side by side', async () => {
+    const session = await openBrowser();
+    try {
+      const { page } = session;
+      await page.goto(viewerUrl);
+      await clipReady(page, VIEW.name);
+      // Futures cut from the clip, fanned out a little, and one mid-jump right over the truth: its body
+      // is where the truth's label would sit over the truth's head.
+      const n = await page.evaluate(() => {
+        const app = window.motionFutures!;
+        const m = app.clips.current!;
+        const stride = m.joints * 3;
+        const n = 10;
+        const cut = (from: number, to: number, dx = 0, dy = 0) => {
+          const p = m.positions.slice(from * stride, to * stride);
+          for (let i = 0; i < p.length; i += 3) { p[i] += dx; p[i + 1] += dy; }
+          return p;
+        };
+        const futures = (k: number, dx: number, dy: number) => ({
+          id: `s${k}`, role: 'prediction' as const, sample: k, positions: cut(n, m.frames, dx, dy),
+          frames: m.frames - n, joints: m.joints, startFrame: n,
+        });
+        app.player.pause();
+        app.view.setTracks([
+          { id: 'history', role: 'history' as const, positions: cut(0, n), frames: n, joints: m.joints, startFrame: 0 },
+          { id: 'truth', role: 'truth' as const, positions: cut(n, m.frames), frames: m.frames - n, joints: m.joints, startFrame: n },
+          ...[0, 1, 2, 3].map((k) => futures(k, 0.06 * (k - 1.5), 0)),
+          futures(4, 0, 0.45),
+        ], m.skeleton);
+        app.player.load(m.frames, m.fps, 30);
+        return n;
+      });
+      const check = async (layout: string) => {
+        const length = await page.evaluate(() => window.motionFutures!.player.state.length);
+        for (const frame of [n, n + 5, Math.floor((n + length - 1) / 2), length - 1]) {
+          await page.evaluate((f) => window.motionFutures!.player.seek(f), frame);
+          await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+          const scene = await page.evaluate(() => {
+            const app = window.motionFutures!;
+            const root = app.host.shadowRoot!;
+            const canvas = root.querySelector('canvas')!.getBoundingClientRect();
+            const rect = (e: Element) => {
+              const r = e.getBoundingClientRect();
+              return { left: r.left - canvas.left, top: r.top - canvas.top, right: r.right - canvas.left, bottom: r.bottom - canvas.top };
+            };
+            const labels = [...root.querySelectorAll<HTMLElement>('.figure-label')].filter((e) => e.style.display !== 'none')
+              .map((e) => ({ role: e.dataset.role, text: e.textContent, box: rect(e) }));
+            return { labels, figures: app.view.figures().map((f) => ({ label: f.label, role: f.role, box: f.box })), width: canvas.width, height: canvas.height };
+          });
+          const truth = scene.labels.filter((l) => l.role === 'truth');
+          expect(truth, `${layout}, frame ${frame}: one truth label`).toHaveLength(1);
+          const t = truth[0].box;
+          const hit = (b: typeof t) => t.left < b.right && b.left < t.right && t.top < b.bottom && b.top < t.bottom;
+          for (const f of scene.figures) expect(hit(f.box), `${layout}, frame ${frame}: the truth's label over the figure of ${f.label}`).toBe(false);
+          for (const l of scene.labels.filter((x) => x.role !== 'truth')) expect(hit(l.box), `${layout}, frame ${frame}: over the label ${l.text}`).toBe(false);
+          expect(t.left >= 0 && t.top >= 0 && t.right <= scene.width && t.bottom <= scene.height, `${layout}, frame ${frame}: on the stage`).toBe(true);
+          // it stays by its figure: within 150 px of the truth's head
+          const own = scene.figures.find((f) => f.role === 'truth')!.box;
+          expect(Math.hypot((t.left + t.right) / 2 - (own.left + own.right) / 2, t.bottom - own.top), `${layout}, frame ${frame}`).toBeLessThan(150);
+          if (layout === 'overlaid') {
+            // the scene is the hard one: the jumper's body fills the room over the truth's head, where its label would go
+            const jumper = scene.figures.find((f) => f.label.startsWith('#5'))!.box;
+            const x = (own.left + own.right) / 2;
+            expect(jumper.top < own.top - 10 && jumper.bottom > own.top && jumper.left < x && jumper.right > x, `frame ${frame}: the jumper over the truth's head`).toBe(true);
+          }
+        }
+      };
+      await check('overlaid');
+      await session.screenshot('viewer-truth-label-overlay.png', page.locator('#viewer'));
+      await page.evaluate(() => window.motionFutures!.view.setLayout('side'));
+      await check('side by side');
+      await session.screenshot('viewer-truth-label-side.png', page.locator('#viewer'));
+      expect(session.problems).toEqual(NO_PROBLEMS);
+    } finally {
+      await session.close();
+    }
+  });
+});
+
 describe('phone width, dark scheme', () => {
   it('stacks the panel under the stage and still draws the figure', async () => {
     const session = await openBrowser({ viewport: { width: 390, height: 844 }, colorScheme: 'dark' });

@@ -4,6 +4,7 @@ import baseCss from '../styles.css?inline';
 import { startApp, type App, type ViewOptions } from '../ui/app';
 import { el } from '../ui/dom';
 import { cooperativeGestures } from './gestures';
+import { mountMiniLegend } from './legend';
 import { SITE_ROOT } from './site';
 import { pauseWhileUnseen } from './visibility';
 import widgetCss from './widget.css?inline';
@@ -87,6 +88,8 @@ export function mountWidget(host: HTMLElement, options: WidgetOptions): App {
   const gestureHint = el('p', { class: 'gesture-hint', 'aria-hidden': 'true', hidden: true });
   const toolbar = el('div', { class: 'stage-toolbar-slot' });
   const playback = el('div', { id: 'playback', class: 'playback' });
+  // the minimal widget's key to the figures (the full controls have the toolbar's legend)
+  const legend = options.view.controls === 'minimal' ? el('div', { class: 'mini-legend-slot' }) : null;
   const shownLine = el('div', { class: 'stage-status-slot' });
   const bar = el('div', { class: 'mini-bar' });
   const panel = el('aside', { id: 'panel', class: 'panel', 'aria-label': 'Controls' });
@@ -99,7 +102,7 @@ export function mountWidget(host: HTMLElement, options: WidgetOptions): App {
   root.replaceChildren(el('div', { class: 'mf-widget', 'data-controls': options.view.controls, 'data-embedded': String(options.embedded) },
     el('div', { class: 'app' },
       el('section', { class: 'stage-area', 'aria-label': '3D viewer' },
-        toolbar, el('div', { class: 'stage-frame' }, viewer, messages, notice, gestureHint), playback, shownLine, bar, hint, toggleRow),
+        toolbar, el('div', { class: 'stage-frame' }, viewer, messages, notice, gestureHint), legend, playback, shownLine, bar, hint, toggleRow),
       panel)));
   const widget = root.firstElementChild as HTMLElement;
   panelToggle.addEventListener('click', () => {
@@ -127,6 +130,7 @@ export function mountWidget(host: HTMLElement, options: WidgetOptions): App {
     siteRoot: SITE_ROOT, view: options.view, link: options.link, status, onLink: options.onLink,
   });
   ownSizes(root, options.theme);
+  if (legend) mountMiniLegend(legend, app.view);
   // The minimal widget and a narrow embed keep the view's summary for screen readers only
   // (aria-describedby of the canvas, widget.css): no tab stop on a 1 px box.
   if (options.view.controls === 'minimal' || options.embedded) root.querySelector('.view-summary')?.setAttribute('tabindex', '-1');

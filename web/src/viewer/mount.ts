@@ -40,6 +40,7 @@ class InertView implements SkeletonView {
   best(): null { return null; }
   bestRows(): [] { return []; }
   viewDirection(): null { return null; }
+  shownTracks(): [] { return []; }
   onTracks(): void {}
   setLayout(mode: LayoutMode): void { this.layout = mode; }
   setFrame(): void {}

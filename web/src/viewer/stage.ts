@@ -45,6 +45,10 @@ export class Stage {
   private readonly resizeObserver: ResizeObserver;
   private readonly colourScheme = window.matchMedia('(prefers-color-scheme: dark)');
   private readonly onScheme = () => { this.applyTheme(); };
+  /** Called on every render after the camera has moved and before the labels are drawn: labels that
+   *  are placed on screen (viewer.ts) are placed from where the camera is then. */
+  beforeLabels: (() => void) | null = null;
+  private drawn = { width: 1, height: 1 };
 
   /** Throws WebGLUnavailableError when no usable WebGL 2 context can be made. */
   constructor(private readonly container: HTMLElement, private readonly onContextLost?: (lost: boolean) => void) {
@@ -116,6 +120,7 @@ export class Stage {
   /** Render now (the labels too). */
   render(): void {
     this.renderer.render(this.scene, this.camera);
+    this.beforeLabels?.();
     this.labels.render(this.scene, this.camera);
   }
 
@@ -226,6 +231,7 @@ export class Stage {
     const h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h, false);
     this.labels.setSize(w, h);
+    this.drawn = { width: w, height: h };
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     if (!this.userMoved) this.applyFit();
@@ -249,6 +255,9 @@ export class Stage {
     this.gridSize = 0;
     this.setGrid(size, this.gridCentre);
   }
+
+  /** The size drawn at, as of the last resize: read in the render without forcing a layout. */
+  get drawnSize(): { width: number; height: number } { return this.drawn; }
 
   /** Width and height of the drawing area in CSS pixels. */
   get size(): { width: number; height: number } {

@@ -10,6 +10,7 @@ import type { Skeleton } from '../contract/types';
 import { facingAngle } from '../motion/facing';
 import { SkeletonFigures, type FigureDraw } from './figures';
 import { bestPerRow, type BestSample } from './best';
+import { labelRect, placeLabel, type Rect } from './label-place';
 import { layoutTracks, ROW_SPACING, type Layout, type LayoutMode } from './layout';
 import { identityColour, identityCss } from './palette';
 import { RootPaths } from './paths';
@@ -81,7 +82,9 @@ export interface SkeletonView {
   best(): BestSample | null;
   /** Compare mode: the closest sample of each method's row, in row order (one model: its one row). */
   bestRows(): readonly BestSample[];
-  /** Called after every setTracks() and clear(). */
+  /** What is on stage: each track drawn, in order (a hidden ground truth is not). */
+  shownTracks(): readonly Pick<Track, 'role' | 'sample' | 'group'>[];
+  /** Called after every setTracks() and clear(), and when the ground truth is shown or hidden. */
   onTracks(handler: () => void): void;
   dispose(): void;
 }
@@ -130,6 +133,11 @@ interface LabelSlot {
   best: HTMLElement;
   /** Height above the head (metres): overlaid figures share a place, so their labels stack. */
   lift: number;
+  /** Where the label sits in the world (over its figure's head): the ground truth's may be moved on screen. */
+  home: Vector3;
+  /** Its size in CSS px as last laid out (labelSizes): reading it in the render would force a layout
+   *  each frame, 3-6 ms at K = 50 in software rendering. */
+  size: { width: number; height: number };
 }
 
 export class Viewer implements SkeletonView {
@@ -158,6 +166,19 @@ export class Viewer implements SkeletonView {
   /** Placement index of each figure in the last draw, in draw order. */
   private drawn: number[] = [];
   private labels: LabelSlot[] = [];
+  private readonly scratch = new Vector3();
+  /** Reports each label's size after layout; a change draws again, so a label placed by a stale size is placed anew. */
+  private readonly labelSizes = new ResizeObserver((entries) => {
+    let changed = false;
+    for (const e of entries) {
+      const slot = this.labels.find((l) => l.element === e.target);
+      const box = e.borderBoxSize[0];
+      if (!slot || !box || (slot.size.width === box.inlineSize && slot.size.height === box.blockSize)) continue;
+      slot.size = { width: box.inlineSize, height: box.blockSize };
+      changed = true;
+    }
+    if (changed && this.labels.some((l) => l.object.visible && this.tracks[l.track]?.role === 'truth')) this.stage.invalidate();
+  });
   /** Per root path (placement order): whose it is, for its opacity under a selection. */
   private pathOwners: { sample?: number; role: Track['role'] }[] = [];
   private pick: ((sample: number | null) => void) | null = null;
@@ -169,6 +190,7 @@ export class Viewer implements SkeletonView {
   constructor(container: HTMLElement, onContextLost?: (lost: boolean) => void) {
     this.stage = new Stage(container, onContextLost);
     this.stage.scene.add(this.paths.object, this.figuresMesh.group, this.labelGroup);
+    this.stage.beforeLabels = () => this.placeTruthLabels();
     this.listenForPicks();
   }
 
@@ -191,7 +213,7 @@ export class Viewer implements SkeletonView {
     this.givenBoxes = tracks.map(poseBoxes);
     // compare mode: each method's row against its own truth, so the toggle marks one sample per row
     this.bests = bestPerRow(tracks);
-    this.shownTracks();
+    this.keepShown();
     if (this.selected !== null && !tracks.some((tr) => tr.sample === this.selected)) this.selected = null;
     this.arrange(!options.keepView);
     for (const l of this.trackListeners) l();
@@ -201,7 +223,7 @@ export class Viewer implements SkeletonView {
     this.given = [];
     this.givenBoxes = [];
     this.bests = [];
-    this.shownTracks();
+    this.keepShown();
     this.arrange(false);
     for (const l of this.trackListeners) l();
   }
@@ -224,9 +246,10 @@ export class Viewer implements SkeletonView {
   setTruthShown(on: boolean): void {
     if (on === this.truthShown) return;
     this.truthShown = on;
-    this.shownTracks();
+    this.keepShown();
     // side by side the truth has a cell of its own: the grid changes, so it is framed again
     this.arrange(this.mode === 'side' || this.preset === 'follow');
+    for (const l of this.trackListeners) l();
   }
 
   best(): BestSample | null { return this.bests.find((b) => b.group === 0) ?? null; }
@@ -256,8 +279,10 @@ export class Viewer implements SkeletonView {
 
   onTracks(handler: () => void): void { this.trackListeners.push(handler); }
 
+  shownTracks(): readonly Pick<Track, 'role' | 'sample' | 'group'>[] { return this.tracks; }
+
   /** The tracks drawn: those given, less the ground truth when it is hidden. */
-  private shownTracks(): void {
+  private keepShown(): void {
     const keep = this.given.map((tr) => this.truthShown || tr.role !== 'truth');
     this.tracks = this.given.filter((_, i) => keep[i]);
     this.frameBoxes = this.givenBoxes.filter((_, i) => keep[i]);
@@ -307,20 +332,11 @@ export class Viewer implements SkeletonView {
   figures(): FigureInfo[] {
     const camera = this.stage.camera;
     camera.updateMatrixWorld();
-    const { width, height } = this.stage.size;
-    const v = new Vector3();
+    const size = this.stage.size;
     return this.drawn.map((pi, i) => {
       const p = this.arrangement.placements[pi];
       const track = this.tracks[p.track];
-      const pose = this.draws[pi].pose;
-      const box = { left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
-      for (let j = 0; j < track.joints; j++) {
-        v.set(pose[j * 3] + p.x, pose[j * 3 + 1], pose[j * 3 + 2] + p.z).project(camera);
-        const x = ((v.x + 1) / 2) * width;
-        const y = ((1 - v.y) / 2) * height;
-        box.left = Math.min(box.left, x); box.right = Math.max(box.right, x);
-        box.top = Math.min(box.top, y); box.bottom = Math.max(box.bottom, y);
-      }
+      const box = this.screenBox(pi, size);
       const slot = this.labels.find((l) => l.placements.includes(pi));
       const status = figureStatus(this.tracks[slot?.track ?? p.track], this.t);
       return {
@@ -331,6 +347,59 @@ export class Viewer implements SkeletonView {
         group: track.group,
       };
     });
+  }
+
+  /** The projected box of placement `pi`'s joints as last drawn, CSS px from the canvas's top-left
+   *  (the camera's matrices must be current). */
+  private screenBox(pi: number, { width, height }: { width: number; height: number }): Rect {
+    const p = this.arrangement.placements[pi];
+    const joints = this.tracks[p.track].joints;
+    const pose = this.draws[pi].pose;
+    const v = this.scratch;
+    const box = { left: Infinity, top: Infinity, right: -Infinity, bottom: -Infinity };
+    for (let j = 0; j < joints; j++) {
+      v.set(pose[j * 3] + p.x, pose[j * 3 + 1], pose[j * 3 + 2] + p.z).project(this.stage.camera);
+      const x = ((v.x + 1) / 2) * width;
+      const y = ((1 - v.y) / 2) * height;
+      box.left = Math.min(box.left, x); box.right = Math.max(box.right, x);
+      box.top = Math.min(box.top, y); box.bottom = Math.max(box.bottom, y);
+    }
+    return box;
+  }
+
+  /**
+   * The ground truth's label covers no other figure and no other label (label-place.ts): where its own
+   * spot over the head is taken, it moves on screen to the nearest free spot. Run on every render,
+   * from where the camera is then; the other labels stay over their heads.
+   */
+  private placeTruthLabels(): void {
+    const truths = this.labels.filter((l) => l.object.visible && this.tracks[l.track]?.role === 'truth');
+    if (!truths.length) return;
+    const camera = this.stage.camera;
+    camera.updateMatrixWorld();
+    const { width, height } = this.stage.drawnSize;
+    const v = this.scratch;
+    const onScreen = (at: Vector3) => {
+      v.copy(at).project(camera);
+      return { x: ((v.x + 1) / 2) * width, y: ((1 - v.y) / 2) * height, z: v.z, shown: v.z >= -1 && v.z <= 1 };
+    };
+    const obstacles: Rect[] = this.drawn.map((pi) => this.screenBox(pi, { width, height }));
+    for (const l of this.labels) {
+      if (!l.object.visible || truths.includes(l)) continue;
+      const s = onScreen(l.home);
+      if (s.shown) obstacles.push(labelRect(s, l.size));
+    }
+    const bounds = { left: 0, top: 0, right: width, bottom: height };
+    for (const l of truths) {
+      l.object.position.copy(l.home);
+      const s = onScreen(l.home);
+      if (!s.shown) continue; // behind the camera: CSS2DRenderer hides it
+      const size = l.size;
+      const at = placeLabel(s, size, obstacles, bounds);
+      // back into the world at the head's depth, where CSS2DRenderer projects it to that spot
+      if (at.x !== s.x || at.y !== s.y) l.object.position.set((at.x / width) * 2 - 1, 1 - (at.y / height) * 2, s.z).unproject(camera);
+      obstacles.push(labelRect(at, size));
+    }
   }
 
   /** Whether placement `p` shows a figure at timeline position `t`. */
@@ -486,6 +555,7 @@ export class Viewer implements SkeletonView {
   }
 
   private clearLabels(): void {
+    this.labelSizes.disconnect();
     for (const l of this.labels) l.element.remove();
     this.labelGroup.clear();
     this.labels = [];
@@ -540,7 +610,8 @@ export class Viewer implements SkeletonView {
       // futures, shares the first step with the ground truth).
       const lift = LABEL_LIFT + (this.mode === 'overlay' || this.arrangement.cells <= 1 ? LABEL_STEP * rank : 0);
       if (track.role !== 'history') ranks.set(owner.cell, rank + 1);
-      this.labels.push({ object, element, placements, sample: track.sample, lift, track: owner.track, action, stopped, best });
+      this.labels.push({ object, element, placements, sample: track.sample, lift, track: owner.track, action, stopped, best, home: new Vector3(), size: { width: 0, height: 0 } });
+      this.labelSizes.observe(element);
     }
   }
 
@@ -577,7 +648,8 @@ export class Viewer implements SkeletonView {
       const p = this.arrangement.placements[pi];
       const pose = this.draws[pi].pose;
       const j = this.headJoint * 3;
-      l.object.position.set(pose[j] + p.x, pose[j + 1] + l.lift, pose[j + 2] + p.z);
+      l.home.set(pose[j] + p.x, pose[j + 1] + l.lift, pose[j + 2] + p.z);
+      l.object.position.copy(l.home);
     }
     this.paths.setOpacity((i) => {
       const { sample, role } = this.pathOwners[i];
