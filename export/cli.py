@@ -61,7 +61,7 @@ def _models(args) -> None:
     unknown = set(args.only or []) - {c["id"] for _, c in configs}
     if unknown:
         raise ValueError(f"--only names unknown models {sorted(unknown)}")
-    doc = build_models(configs, _source(args) if args.data else None, only=args.only)
+    doc = build_models(configs, _source(args) if args.data else None, only=args.only, resume=args.resume)
     print(f"wrote {len(doc['models'])} models to public/models/manifest.json")
 
 
@@ -169,6 +169,9 @@ def parser() -> argparse.ArgumentParser:
     c = sub.add_parser("models", help="convert the data, train and export every served model into public/")
     c.add_argument("--data", help="a folder of motion files (default: the DeepMimic clips)")
     c.add_argument("--only", nargs="*", help="model ids to rebuild (default: all in configs/site.json)")
+    c.add_argument("--resume", action="store_true",
+                   help="continue each model's checkpoint in runs/<id>/ (e.g. trained side by side with "
+                        "`train`); a finished one is only exported")
     c.set_defaults(run=_models)
 
     c = sub.add_parser("predict", help="predict futures for a clip window with the served models")

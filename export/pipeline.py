@@ -76,9 +76,11 @@ def say_what_is_replaced(source: MotionSource, clips_dir: Path, models_dir: Path
 
 def build_models(configs: list[tuple[str, dict]], source: MotionSource | None = None,
                  out_dir: Path = MODELS_DIR, clips_dir: Path = CLIPS_DIR, progress: bool = True,
-                 only: list[str] | None = None) -> dict:
+                 only: list[str] | None = None, resume: bool = False) -> dict:
     """Convert the data, then train and export every config (or only the ids in `only`, keeping
-    the other entries of the existing manifest); write the manifest. Returns it."""
+    the other entries of the existing manifest); write the manifest. Returns it. With `resume`, each
+    model continues its checkpoint in runs/<id>/ (a finished one is only exported): models trained
+    side by side with `python -m export train` are then exported in one manifest."""
     source = source or default_source()
     clips = source.clips()
     say_what_is_replaced(source, clips_dir, out_dir)
@@ -92,7 +94,7 @@ def build_models(configs: list[tuple[str, dict]], source: MotionSource | None = 
         if only and cfg["id"] not in only and cfg["id"] in previous:
             entries.append(previous[cfg["id"]])
             continue
-        method, model = train(cfg, clips, RUNS_DIR / cfg["id"], progress=progress)
+        method, model = train(cfg, clips, RUNS_DIR / cfg["id"], resume=resume, progress=progress)
         entries.append(export(method, model, cfg, out_dir, actions, index["data_hash"], name))
     doc = manifest_document(entries, actions, index["data_hash"])
     write_manifest(doc, out_dir / "manifest.json")

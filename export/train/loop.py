@@ -7,6 +7,7 @@ takes its own contiguous shard of it, so N ranks see the same examples as one pr
 """
 from __future__ import annotations
 
+import json
 import os
 import random
 from dataclasses import dataclass
@@ -88,6 +89,10 @@ def fit(method: Method, model: nn.Module, data: TrainingData, tc: TrainConfig,
     ckpt = run_dir / "checkpoint.pt" if run_dir else None
     if resume and ckpt and ckpt.exists():
         state = torch.load(ckpt, weights_only=False)
+        # A checkpoint continues only the run it was saved from: another config would be a different model.
+        if "config" in state and state["config"] != _config_key(method.cfg):
+            raise ValueError(f"{ckpt} was saved by another config than {method.cfg['id']}'s: delete it or train "
+                             "without resuming")
         model.load_state_dict(state["model"])
         optim.load_state_dict(state["optim"])
         sched.load_state_dict(state["sched"])
@@ -111,14 +116,18 @@ def fit(method: Method, model: nn.Module, data: TrainingData, tc: TrainConfig,
         if rank == 0 and step % 10 == 0:
             bar.set_postfix(loss=f"{loss.item():.4f}", **{k: f"{v:.4f}" for k, v in logs.items()}, refresh=False)
         if ckpt and rank == 0 and ((step + 1) % tc.checkpoint_every == 0 or step + 1 == end):
-            _save(ckpt, model, optim, sched, step + 1)
+            _save(ckpt, model, optim, sched, step + 1, _config_key(method.cfg))
     model.eval()
     return model
 
 
-def _save(path: Path, model, optim, sched, step: int) -> None:
+def _config_key(cfg: dict) -> str:
+    return json.dumps(cfg, sort_keys=True)
+
+
+def _save(path: Path, model, optim, sched, step: int, config: str) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp")
     torch.save({"model": model.state_dict(), "optim": optim.state_dict(), "sched": sched.state_dict(),
-                "torch_rng": torch.get_rng_state(), "step": step}, tmp)
+                "torch_rng": torch.get_rng_state(), "step": step, "config": config}, tmp)
     os.replace(tmp, path)  # a crash mid-write never leaves a broken checkpoint

@@ -40,6 +40,17 @@ def test_resuming_from_a_checkpoint_equals_an_uninterrupted_run(clips, tmp_path)
         assert torch.equal(a, b), k
 
 
+def test_a_finished_checkpoint_resumes_to_the_same_model_and_another_config_is_refused(clips, tmp_path):
+    cl = list(clips.values())
+    _, full = train(tiny_cfg(), cl, tmp_path / "run", progress=False)
+    # `models --resume` exports what `train` left: a finished run is not trained again
+    _, again = train(tiny_cfg(), cl, tmp_path / "run", resume=True, progress=False)
+    for (k, a), b in zip(full.state_dict().items(), again.state_dict().values()):
+        assert torch.equal(a, b), k
+    with pytest.raises(ValueError, match="another config"):
+        train(override(tiny_cfg(), **{"train.lr": 0.5}), cl, tmp_path / "run", resume=True, progress=False)
+
+
 def test_onnx_matches_torch_and_the_check_can_fail(clips):
     method, model = train(tiny_cfg(), list(clips.values()), progress=False)
     graph = method.graphs(model)["predict"]
