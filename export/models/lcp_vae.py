@@ -15,6 +15,7 @@ from torch import nn
 from torch.nn import functional as F
 
 from .gru_rollout import GruRollout, RolloutGraph
+from . import inputs
 from .finish import Finish
 
 VARIANTS = {"lcp": 4, "cvae_h": 2, "cvae_zc": 3}   # variant -> row of Table 4
@@ -70,10 +71,14 @@ class PoseDecoder(nn.Module):
     pose): the first future frame then starts at the last observed pose instead of jumping.
     """
 
-    def __init__(self, pose: int, hidden: int):
+    def __init__(self, pose: int, hidden: int, input_mask: torch.Tensor | None = None):
         super().__init__()
         self.cell = nn.GRUCell(pose, hidden)
         self.out = nn.Linear(hidden, pose)
+        # Coordinates the cell does not read (the root channel's position with root_input "step",
+        # models/inputs.py); the residual still accumulates them.
+        self.register_buffer("input_mask", torch.ones(pose) if input_mask is None else input_mask.float(),
+                             persistent=False)
         with torch.no_grad():  # start near zero velocity
             self.out.weight.mul_(0.1)
             self.out.bias.zero_()
@@ -84,7 +89,7 @@ class PoseDecoder(nn.Module):
         previous pose with probability `teacher_forcing` (appendix C), per example and step."""
         h, x, outs = state, seed, []
         for t in range(frames):
-            h = self.cell(x, h)
+            h = self.cell(x * self.input_mask, h)
             y = x + self.out(h)
             outs.append(y)
             if target is not None and teacher_forcing > 0:
@@ -98,8 +103,11 @@ class PoseDecoder(nn.Module):
 class LcpVae(nn.Module):
     def __init__(self, variant: str, joints: int, history_frames: int, future_frames: int,
                  hidden: int, embed: int, latent: int, pose_mean: torch.Tensor, pose_std: torch.Tensor,
-                 keep_bones: bool = True, seam: bool = True):
+                 keep_bones: bool = True, seam: bool = True, step_std: torch.Tensor | None = None,
+                 root_input: str = "position", history_steps: bool = False):
         super().__init__()
+        # What the networks read (models/inputs.py): the root channel as steps, the history's steps.
+        self.root_input, self.history_steps = inputs.check_root_input(root_input), history_steps
         # The data decoder's last layers (models/finish.py): the seam with the history, bones of fixed length.
         self.finish_layer = Finish(future_frames, seam, keep_bones) if (seam or keep_bones) else None
         if variant not in VARIANTS:
@@ -110,7 +118,9 @@ class LcpVae(nn.Module):
         pose = joints * 3
         self.register_buffer("pose_mean", pose_mean.reshape(pose).float())
         self.register_buffer("pose_std", pose_std.reshape(pose).float())
-        self.encode_condition = MotionEncoder(pose, hidden)
+        # frame-to-frame steps' std: the scale of the history's steps and of the root's step (models/wat.py)
+        self.register_buffer("step_std", (pose_std if step_std is None else step_std).reshape(pose).float())
+        self.encode_condition = MotionEncoder(pose * (2 if history_steps else 1), hidden)
         if self.has_cs_vae:
             self.cs_encode = GaussianEncoder(hidden, embed, latent)
             self.cs_decode = StateDecoder(latent, embed, hidden)
@@ -119,7 +129,7 @@ class LcpVae(nn.Module):
         encoder_condition = latent if variant == "cvae_zc" else hidden
         self.lcp_encode = GaussianEncoder(hidden + encoder_condition, embed, latent)
         self.lcp_decode = StateDecoder(latent + self.decoder_condition_size, embed, hidden)
-        self.decode_data = PoseDecoder(pose, hidden)
+        self.decode_data = PoseDecoder(pose, hidden, inputs.pose_input_mask(pose, root_input))
 
     @property
     def has_cs_vae(self) -> bool:
@@ -138,6 +148,14 @@ class LcpVae(nn.Module):
         """[B, F, J, 3] metres -> [B, F, P] normalised coordinates."""
         return (poses.flatten(2) - self.pose_mean) / self.pose_std
 
+    def history_input(self, history: torch.Tensor) -> torch.Tensor:
+        """What the condition encoder reads (models/inputs.py)."""
+        return inputs.history_features(history, self.pose_mean, self.pose_std, self.step_std, self.history_steps)
+
+    def future_input(self, future: torch.Tensor) -> torch.Tensor:
+        """What the data encoder reads (models/inputs.py)."""
+        return inputs.future_features(future, self.pose_mean, self.pose_std, self.step_std, self.root_input)
+
     def denormalise(self, x: torch.Tensor) -> torch.Tensor:
         return (x * self.pose_std + self.pose_mean).reshape(*x.shape[:-1], self.joints, 3)
 
@@ -147,7 +165,7 @@ class LcpVae(nn.Module):
 
     def condition(self, history: torch.Tensor) -> dict[str, torch.Tensor]:
         """history [B, N, J, 3] metres -> h_t, and mu_c, sigma_c when there is a CS-VAE."""
-        out = {"h_t": self.encode_condition(self.normalise(history))}
+        out = {"h_t": self.encode_condition(self.history_input(history))}
         if self.has_cs_vae:
             out["mu_c"], out["sigma_c"] = self.cs_encode(out["h_t"])
         return out
@@ -168,7 +186,7 @@ class LcpVae(nn.Module):
     def rollout(self) -> GruRollout:
         """DecodeData's step with the normalisation folded into the weights (raw metres)."""
         cell, out = self.decode_data.cell, self.decode_data.out
-        w_in = cell.weight_ih / self.pose_std
+        w_in = cell.weight_ih / self.pose_std * self.decode_data.input_mask
         return GruRollout(w_input=w_in, b_input=cell.bias_ih - w_in @ self.pose_mean,
                           w_hidden=cell.weight_hh, b_hidden=cell.bias_hh,
                           w_out=out.weight * self.pose_std[:, None], b_out=out.bias * self.pose_std,
@@ -186,7 +204,7 @@ class LcpVae(nn.Module):
             out["history_hat"] = self.decode_condition(self.cs_decode(z_c), torch.zeros_like(x_hist[:, 0]),
                                                        self.history_frames, x_hist, teacher_forcing)
             out["history_norm"] = x_hist
-        h_T = self.encode_data(x_fut)
+        h_T = self.encode_data(self.future_input(future))
         if self.variant == "lcp":
             out["mu"], out["sigma"] = self.lcp_encode(torch.cat([h_T, cond["h_t"]], -1))
             z, c = out["mu"] + out["sigma"] * z_c, None                              # Eq. 4

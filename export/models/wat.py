@@ -15,9 +15,11 @@ from torch import nn
 
 from .gru_rollout import GruRollout, RolloutGraph
 from .finish import Finish
+from . import inputs
 
 # Log-variances are clamped so exp(logvar / 2) stays finite in float32 in both runtimes.
 LOGVAR_MIN, LOGVAR_MAX = -12.0, 6.0
+
 
 
 def mlp(sizes: list[int]) -> nn.Sequential:
@@ -38,9 +40,12 @@ class WatCVAE(nn.Module):
     def __init__(self, joints: int, actions: int, max_frames: int, latent: int, action_embed: int,
                  history_features: int, future_features: int, mlp_hidden: int,
                  pose_mean: torch.Tensor, pose_std: torch.Tensor, offset_std: torch.Tensor, keep_bones: bool = True,
-                 seam: bool = True):
+                 seam: bool = True, root_input: str = "position", history_steps: bool = False):
         super().__init__()
         self.joints, self.actions, self.max_frames, self.latent = joints, actions, max_frames, latent
+        # What the networks read (models/inputs.py): the root channel as steps, the history's steps.
+        self.root_input = inputs.check_root_input(root_input)
+        self.history_steps = history_steps
         # The decoder's last layers (models/finish.py): the seam with the history, bones of fixed length.
         self.finish_layer = Finish(max_frames, seam, keep_bones) if (seam or keep_bones) else None
         k = joints * 3
@@ -69,6 +74,25 @@ class WatCVAE(nn.Module):
     def normalise(self, poses: torch.Tensor) -> torch.Tensor:
         return (poses.flatten(2) - self.pose_mean) / self.pose_std
 
+    def step_scale(self) -> torch.Tensor:
+        """The scale of frame-to-frame steps in the inputs: step_std where the model has it."""
+        return self.step_std if hasattr(self, "step_std") else self.pose_std
+
+    def history_input(self, history: torch.Tensor) -> torch.Tensor:
+        """A history [B, N, J, 3] as the history encoder reads it (models/inputs.py)."""
+        return inputs.history_features(history, self.pose_mean, self.pose_std, self.step_scale(), self.history_steps)
+
+    def history_input_size(self) -> int:
+        return self.joints * 3 * (2 if self.history_steps else 1)
+
+    def future_input(self, future: torch.Tensor) -> torch.Tensor:
+        """A future [B, T, J, 3] (canonical) as the posterior's encoder reads it (models/inputs.py)."""
+        return inputs.future_features(future, self.pose_mean, self.pose_std, self.step_scale(), self.root_input)
+
+    def pose_input_mask(self) -> torch.Tensor:
+        """[J * 3]: which coordinates of the previous frame an autoregressive decoder reads."""
+        return inputs.pose_input_mask(self.joints * 3, self.root_input)
+
     @staticmethod
     def split(params: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         mu, logvar = params.chunk(2, dim=-1)
@@ -76,7 +100,7 @@ class WatCVAE(nn.Module):
 
     def prior_params(self, history: torch.Tensor, action: torch.Tensor):
         """-> prior mean [B, D], prior log-variance [B, D], history features [B, F]."""
-        h_x = self.encode_history(self.normalise(history))
+        h_x = self.encode_history(self.history_input(history))
         mu, logvar = self.split(self.prior(torch.cat([h_x, self.action_embed(action)], -1)))
         return mu, logvar, h_x
 
@@ -84,14 +108,14 @@ class WatCVAE(nn.Module):
         return frames if self.finish_layer is None else self.finish_layer(frames, history[:, -2:])
 
     def decode_from(self, z: torch.Tensor, history: torch.Tensor, action: torch.Tensor) -> torch.Tensor:
-        h_x = self.encode_history(self.normalise(history))
+        h_x = self.encode_history(self.history_input(history))
         return self.finish(self.decode(h_x, self.action_embed(action), z, history), history)
 
     def forward(self, history: torch.Tensor, action: torch.Tensor, future: torch.Tensor, future_length: torch.Tensor):
         """Training pass: z from the posterior (reparameterised) -> (prediction, posterior, prior) params."""
-        h_x = self.encode_history(self.normalise(history))
+        h_x = self.encode_history(self.history_input(history))
         a = self.action_embed(action)
-        h_y = self.encode_future(self.normalise(future), future_length)
+        h_y = self.encode_future(self.future_input(future), future_length)
         mu, logvar = self.split(self.posterior(torch.cat([h_x, h_y, a], -1)))
         prior_mu, prior_logvar = self.split(self.prior(torch.cat([h_x, a], -1)))
         z = mu + (0.5 * logvar).exp() * torch.randn_like(mu)
@@ -123,7 +147,7 @@ class WatRNN(WatCVAE):
         k, c, h = joints * 3, history_hidden + action_embed + latent, decoder_hidden
         self.residual = residual
         self.register_buffer("step_std", (step_std if step_std is not None else torch.ones(k)).reshape(1, 1, k).float())
-        self.history_gru = nn.GRU(k, history_hidden, batch_first=True)
+        self.history_gru = nn.GRU(self.history_input_size(), history_hidden, batch_first=True)
         self.future_gru = nn.GRU(k, future_hidden, batch_first=True)
         self.decoder_init = nn.Linear(c, h)
         self.gate_condition = nn.Linear(c, 3 * h)            # GRU input gates [r, u, n] from c ...
@@ -158,8 +182,9 @@ class WatRNN(WatCVAE):
         c = torch.cat([h_x, a, z], -1)
         h = torch.tanh(self.decoder_init(c))
         prev, frames = x_last, []
+        mask = self.pose_input_mask()
         for _ in range(self.max_frames):
-            pose_n = (prev - self.pose_mean[0]) / self.pose_std[0]
+            pose_n = (prev - self.pose_mean[0]) / self.pose_std[0] * mask
             h = self._gru(self.gate_condition(c) + self.gate_pose(pose_n), self.gate_hidden(h), h)
             if self.residual:
                 prev = prev + self.decoder_out(h) * self.step_std[0]
@@ -176,7 +201,7 @@ class WatRNN(WatCVAE):
         hidden = h.shape[-1]
         mean, std = self.pose_mean[0, 0], self.pose_std[0, 0]
         scale = (self.step_std if self.residual else self.offset_std)[0, 0]
-        w_pose = self.gate_pose.weight / std                                  # gates from the raw pose
+        w_pose = self.gate_pose.weight / std * self.pose_input_mask()         # gates from the raw pose
         w_out = self.decoder_out.weight * scale[:, None]                      # output = b_out + w_out h_t
         b_out = self.decoder_out.bias * scale
         first = self.gate_condition(c) - mean @ w_pose.t() + x_last @ w_pose.t()   # y_0 = x_N
@@ -203,7 +228,7 @@ class WatRNN(WatCVAE):
     def rollout_setup(self, z, history, action):
         """The decoder's start for the exported rollout: (x_N [B, K], h_0, c = [h_x, a, z][, the history's
         last two frames for the finishing layers])."""
-        c = torch.cat([self.encode_history(self.normalise(history)), self.action_embed(action), z], -1)
+        c = torch.cat([self.encode_history(self.history_input(history)), self.action_embed(action), z], -1)
         start = (history[:, -1].flatten(1), torch.tanh(self.decoder_init(c)), c)
         return start if self.finish_layer is None else start + (history[:, -2:],)
 
@@ -211,7 +236,7 @@ class WatRNN(WatCVAE):
         """`decode_reference`'s step with the normalisation folded into the weights (raw metres)."""
         mean, std = self.pose_mean[0, 0], self.pose_std[0, 0]
         scale = (self.step_std if self.residual else self.offset_std)[0, 0]
-        w_pose = self.gate_pose.weight / std
+        w_pose = self.gate_pose.weight / std * self.pose_input_mask()
         return GruRollout(
             w_input=torch.cat([self.gate_condition.weight, w_pose], 1),
             b_input=self.gate_condition.bias - mean @ w_pose.t(),

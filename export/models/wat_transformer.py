@@ -20,6 +20,7 @@ import math
 import torch
 from torch import nn
 
+from . import inputs
 from .wat import WatCVAE
 
 
@@ -117,12 +118,13 @@ class WatTransformer(WatCVAE):
         k = joints * 3
         self.history_frames, self.residual = history_frames, residual
         self.register_buffer("step_std", (step_std if step_std is not None else torch.ones(k)).reshape(1, 1, k).float())
-        self.prior = TokenEncoder(k, actions, latent, d_model, heads, feedforward, prior_layers, history_frames)
+        width = self.history_input_size()          # a frame's inputs: its pose (and its step, history_steps)
+        self.prior = TokenEncoder(width, actions, latent, d_model, heads, feedforward, prior_layers, history_frames)
         # The posterior reads X and every second frame of Y (its gist; halves the training cost).
-        self.posterior = TokenEncoder(k, actions, latent, d_model, heads, feedforward, posterior_layers,
+        self.posterior = TokenEncoder(width, actions, latent, d_model, heads, feedforward, posterior_layers,
                                       history_frames + (max_frames + 1) // 2)
         self.z_embed = nn.Linear(latent, d_model)
-        self.dec_embed = nn.Linear(k, d_model)
+        self.dec_embed = nn.Linear(width, d_model)
         self.register_buffer("dec_pe", sinusoid(history_frames + max_frames, d_model))
         self.dec_blocks = nn.ModuleList(Block(d_model, heads, feedforward, conditioned=True)
                                         for _ in range(decoder_layers))
@@ -140,18 +142,22 @@ class WatTransformer(WatCVAE):
     def prior_params(self, history: torch.Tensor, action: torch.Tensor):
         """-> prior mean [B, D], prior log-variance [B, D], history features [B, d] (the prior
         encoder's outputs at the history frames, averaged)."""
-        mu, logvar, frames = self.prior(self.normalise(history), action)
+        mu, logvar, frames = self.prior(self.history_input(history), action)
         mu, logvar = self.split(torch.cat([mu, logvar], -1))
         return mu, logvar, frames.mean(1)
 
     def posterior_params(self, history: torch.Tensor, action: torch.Tensor, future: torch.Tensor,
                          future_length: torch.Tensor):
         """q(z|X,Y,a) over X and the valid frames of Y (every second one) -> mu, log-variance."""
-        y = self.normalise(future)[:, ::2]
+        y = self.future_input(future)
+        if self.history_steps:    # the future's steps beside its frames, as the history has them
+            steps = inputs.frame_steps(future.flatten(2), history[:, -1].flatten(1)) / self.step_std
+            y = torch.cat([y, steps], -1)
+        y = y[:, ::2]
         valid = torch.arange(y.shape[1])[None] < ((future_length.long() + 1) // 2).clamp(min=1)[:, None]
         bias = torch.zeros(valid.shape).masked_fill(~valid, float("-inf"))
         key_bias = torch.cat([bias.new_zeros(len(bias), history.shape[1]), bias], 1)
-        mu, logvar, _ = self.posterior(torch.cat([self.normalise(history), y], 1), action, key_bias)
+        mu, logvar, _ = self.posterior(torch.cat([self.history_input(history), y], 1), action, key_bias)
         return self.split(torch.cat([mu, logvar], -1))
 
     def decode(self, h_x, a, z, history):
@@ -161,7 +167,11 @@ class WatTransformer(WatCVAE):
         b, n = history.shape[:2]
         x_last = history[:, -1].reshape(b, 1, -1)
         padded = torch.cat([history.reshape(b, n, -1), x_last.expand(b, self.max_frames, -1)], 1)
-        x = self.dec_embed((padded - self.pose_mean) / self.pose_std) + self.dec_pe[: n + self.max_frames]
+        frames = (padded - self.pose_mean) / self.pose_std
+        if self.history_steps:     # the padding holds x_N: its steps are 0
+            steps = self.history_input(history)[..., self.joints * 3:]
+            frames = torch.cat([frames, torch.cat([steps, steps.new_zeros(b, self.max_frames, steps.shape[-1])], 1)], -1)
+        x = self.dec_embed(frames) + self.dec_pe[: n + self.max_frames]
         cond = torch.stack([self.z_embed(z), a], 1)                                # [B, 2, d]
         for block in self.dec_blocks:
             x = block(x, cond)

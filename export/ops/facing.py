@@ -24,6 +24,9 @@ import numpy as np
 
 from ..data.skeleton import Skeleton
 
+# Flat indices of the root channel (the root joint's x and z) in a frame flattened to [J * 3].
+ROOT_CHANNEL = (0, 2)
+
 
 @dataclass(frozen=True)
 class Placement:

@@ -39,3 +39,25 @@ def speed_term(history: torch.Tensor, pred: torch.Tensor, target: torch.Tensor, 
         return d.pow(2).mean()
     m = mask[:, :, None].to(d.dtype)
     return (d.pow(2) * m).sum() / (m.sum() * d.shape[-1]).clamp(min=1.0)
+
+
+def per_second_speed_term(history: torch.Tensor, pred: torch.Tensor, target: torch.Tensor, mask: torch.Tensor,
+                          fps: int = int(FPS), lag: int = LAG) -> torch.Tensor:
+    """The speed term for a future drawn from the prior rather than the posterior: each joint's mean
+    displacement speed over each second of the supervised frames, matched to the truth's. A prior sample
+    is one possible future, not this one, so its phase is its own: only how fast each joint moves over a
+    second is asked of it, not when. [B, N, J, 3] history, [B, T, J, 3] futures, [B, T] bool mask -> scalar."""
+    d_pred, d_true = displacement_speeds(history, pred, lag), displacement_speeds(history, target, lag)
+    m = mask.to(d_pred.dtype)
+    t = d_pred.shape[1]
+    seconds = -(-t // fps)
+    pad = seconds * fps - t
+    def per_second(x):
+        x = torch.nn.functional.pad(x * m[:, :, None], (0, 0, 0, pad)).reshape(len(x), seconds, fps, -1)
+        return x.sum(2)
+    count = torch.nn.functional.pad(m, (0, pad)).reshape(len(m), seconds, fps).sum(-1)     # [B, S]
+    full = count >= fps // 2                         # seconds with at least half their frames supervised
+    denom = count.clamp(min=1)[:, :, None]
+    diff = (per_second(d_pred) - per_second(d_true)) / denom
+    w = full.to(diff.dtype)[:, :, None]
+    return (diff.pow(2) * w).sum() / (w.sum() * diff.shape[-1]).clamp(min=1.0)

@@ -58,10 +58,12 @@ def test_every_variant_trains_with_finite_terms_and_the_full_model_has_all_four(
         loss, logs = method.loss(model, data, step=3)
         assert torch.isfinite(loss)
         assert set(logs) >= {"rec_future", "rec_history", "kl_c", "kl", "lam", "tf"}
-        if variant == "cvae_h":   # row 2 is a standard CVAE: no CS-VAE terms
+        if variant == "cvae_h":   # row 2 is a standard CVAE: no CS-VAE terms, so no z_c to draw a future from
             assert logs["rec_history"] == 0 and logs["kl_c"] == 0 and not hasattr(model, "cs_encode")
+            assert "prior_speed" not in logs
         else:
             assert logs["rec_history"] > 0 and logs["kl_c"] > 0
+            assert np.isfinite(logs["prior_speed"])
 
 
 def test_schedules_teacher_forcing_decays_to_autoregressive_and_lambda_rises_to_one(trained):

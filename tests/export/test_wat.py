@@ -233,10 +233,37 @@ def test_training_moves_weights_and_reports_its_losses(subset):
     model = method.build(data)
     batch = {k: v[:16] for k, v in data.tensors.items()}
     loss, logs = method.loss(model, batch, 0)
-    assert set(logs) == {"rec", "smooth", "kl", "floor", "lam", "speed", "skate"} and all(np.isfinite(list(logs.values())))
-    assert logs["speed"] > 0 and logs["lam"] == 1.0          # the served terms are on, the KL weight fixed at 1
+    assert set(logs) == {"rec", "smooth", "kl", "floor", "lam", "speed", "skate", "prior_speed"} \
+        and all(np.isfinite(list(logs.values())))
+    assert logs["speed"] > 0 and logs["prior_speed"] > 0 and logs["lam"] == 1.0   # the served terms are on
     loss.backward()
     assert model.gate_hidden.weight.grad.abs().sum() > 0 and model.future_gru.weight_ih_l0.grad.abs().sum() > 0
+
+
+def test_slowed_pairs_are_same_pairs_replayed_slowly_about_their_present(subset):
+    cfg = override(load_config("wat_rnn.json"), **TINY, **{"augment.slow_fraction": 1.0})
+    method = WatMethod(cfg)
+    data = method.prepare(subset)
+    rows = torch.cat([torch.arange(32), torch.arange(len(data) - 32, len(data))])   # same pairs come first
+    batch = {k: v[rows] for k, v in data.tensors.items()}
+    history = method.bank["history"][batch["history"]]
+    padding = int(method.tr["padding"])
+    frames, length, target, mask = method.targets(batch["instance"], batch["t0"], padding)
+    torch.manual_seed(0)
+    h, f, n, t, m = method.slowed(history, batch, frames, length, target, mask)
+    same = batch["t0"] == 0
+    assert same.any() and (~same).any()
+    # cross pairs (an unsupervised transition first) are never slowed; same pairs all are at fraction 1
+    assert torch.equal(h[~same], history[~same]) and torch.equal(t[~same], target[~same])
+    assert torch.equal(h[same][:, -1], history[same][:, -1])               # the present stays
+    assert bool((n[same] >= length[same]).all()) and bool((n[same] > length[same]).any())
+
+    def speed(x):
+        return (x[:, 1:] - x[:, :-1]).norm(dim=-1).mean()
+    assert speed(f[same]) < speed(frames[same])
+    # the supervision follows the slowed frames: frame i of the target is slowed frame i while it lasts
+    assert torch.allclose(t[same][:, :8], f[same][:, :8])
+    assert m.sum() >= mask.sum()
 
 
 def test_parity_limit_comes_from_the_float64_gap_and_still_catches_a_wrong_weight(tiny):

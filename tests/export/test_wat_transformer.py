@@ -63,11 +63,16 @@ def test_the_method_is_the_rnn_strategy_with_the_transformer_model():
         assert cfg[key] == rnn[key], key
     # the losses too, the same terms, but for the floor term's weight (measured: the Transformer's feet sank
     # through the floor in 2.3% of frames at the RNN's 1000, in under 2% at 3000) and the RNN's KL and speed
-    # weights, chosen for the RNN alone on the training people (methods/wat.py; the Transformer kept its own)
+    # weights, chosen for the RNN alone on the training people (methods/wat.py; the Transformer kept its own),
+    # and the prior-speed weight (methods/wat.py, methods/wat_transformer.py)
     assert set(cfg["loss"]) == set(rnn["loss"])
-    own = ("floor", "kl", "speed")
+    own = ("floor", "kl", "speed", "prior_speed")
     assert {k: v for k, v in cfg["loss"].items() if k not in own} == {k: v for k, v in rnn["loss"].items() if k not in own}
     assert (cfg["loss"]["kl"], cfg["loss"]["speed"], rnn["loss"]["kl"], rnn["loss"]["speed"]) == (1.0, 40.0, 0.1, 15.0)
+    assert (cfg["loss"]["prior_speed"], rnn["loss"]["prior_speed"]) == (15.0, 5.0)
+    # the inputs and the slowed pairs are the same (models/inputs.py, ops/time_scale.py)
+    assert {k: cfg["model"][k] for k in ("root_input", "history_steps")} == \
+        {k: rnn["model"][k] for k in ("root_input", "history_steps")} and cfg["augment"] == rnn["augment"]
     # What WatMethod and the graphs call on a model: same signatures as the RNN's.
     for name in ("prior_params", "decode_from", "decode", "forward", "normalise", "split"):
         params = lambda cls: list(inspect.signature(getattr(cls, name)).parameters)
@@ -126,7 +131,8 @@ def test_training_step_reaches_every_part(clips):
     torch.nn.init.normal_(model.dec_out.weight, std=0.1)
     batch = {k: v[:16] for k, v in data.tensors.items()}
     loss, logs = method.loss(model, batch, 0)
-    assert set(logs) == {"rec", "smooth", "kl", "floor", "lam", "speed", "skate"} and all(np.isfinite(list(logs.values())))
+    assert set(logs) == {"rec", "smooth", "kl", "floor", "lam", "speed", "skate", "prior_speed"} \
+        and all(np.isfinite(list(logs.values())))
     loss.backward()
     for part in (model.prior.tokens, model.posterior.embed, model.dec_blocks[0].cond_kv, model.z_embed, model.dec_out):
         assert part.weight.grad.abs().sum() > 0
