@@ -85,6 +85,7 @@ describe('how it works', () => {
     expect(words).toMatch(/Pose spread/);
     expect(words).toMatch(/field units/);
     expect(words).toMatch(/√18 ≈ 4\.2/);
+    expect(words).toMatch(/APD .*at least √\(18 × N\) times the pose spread/s);
   });
 
   it('keyposes: a lower threshold keeps more keyposes and rebuilds the clip more closely', async () => {

@@ -213,7 +213,13 @@ describe('the first view (1440 x 900)', () => {
     expect(await lead('spread', 'last')).toBe(cmText(r.spreadCm.last));
     // the field's numbers follow, labelled as such, with how they relate and where they are defined
     expect(await page.locator('.readout-field-title').textContent()).toMatch(/^Field units/);
-    expect(await page.locator('.readout-about').textContent()).toMatch(/√18 ≈ 4\.2 × the per-joint mean/);
+    const about = (await page.locator('.readout-about').textContent())!;
+    expect(about).toMatch(/ADE and FDE .*√18 ≈ 4\.2 × the per-joint mean/);
+    // APD flattens all frames into one vector: its factor is sqrt(18 x frames), and the numbers shown obey it
+    const factor = Math.sqrt(18 * r.frames);
+    expect(about).toContain(`APD puts each sample's whole future, ${r.frames} frames × 18 joints, into one vector: at least √(18 × ${r.frames}) ≈ ${factor.toFixed(0)} × the pose spread.`);
+    expect(r.apd).toBeGreaterThanOrEqual(factor * r.spreadCm.overFrames / 100);
+    if (r.covered) expect(r.best!.rootRelative.ade).toBeGreaterThanOrEqual(Math.sqrt(18) * r.bestPerJointCm!.ade / 100);
     expect(new URL((await page.locator('.readout-help').getAttribute('href'))!).pathname).toMatch(/explainer\.html$/);
     expect(new URL((await page.locator('.readout-help').getAttribute('href'))!).hash).toBe('#numbers');
     expect(await page.locator('.readout-apd .metric').textContent()).toBe(`${r.apd.toFixed(3)} m`);

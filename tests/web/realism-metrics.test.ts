@@ -2,7 +2,7 @@
 // contract/vectors/metrics.json (export/eval/realism/mpjpe.py, skating.py) within the file's tolerance.
 import { describe, expect, it } from 'vitest';
 import { readFileSync } from 'node:fs';
-import { adeFde } from '../../web/src/metrics/readout';
+import { adeFde, apd, apdFactor, worldPoses } from '../../web/src/metrics/readout';
 import {
   contactSpeeds, footSkating, medianContactSpeed, mpjpeCm, mpjpeCmPerSample, poseSpreadCm,
 } from '../../web/src/metrics/realism';
@@ -48,6 +48,23 @@ describe('realism measures by hand', () => {
     const off = truth.map((v, i) => (i % 3 === 1 ? v + 0.05 : v)); // every joint 5 cm up
     expect(mpjpeCm(off, 1, truth, J, false).ade).toBeCloseTo(5, 10);
     expect(adeFde(off, 1, truth, J, false).ade).toBeCloseTo(Math.sqrt(18) * 0.05, 12);
+  });
+
+  it("the read-out's sentence holds: APD is at least sqrt(18 x frames) times the pose spread (equal when every joint is off alike)", () => {
+    // K = 3 futures of 30 frames, random poses (a fixed LCG): the bound is Cauchy-Schwarz, so it holds for any
+    let x = 12345;
+    const rand = () => { x = (Math.imul(x, 1103515245) + 12345) >>> 0; return x / 2 ** 32 - 0.5; };
+    const T = 30;
+    const futures = Float64Array.from({ length: 3 * T * J * 3 }, rand);
+    const spread = poseSpreadCm(futures, 3, J).overFrames / 100;
+    expect(apdFactor(T)).toBeCloseTo(Math.sqrt(18 * T), 12);
+    expect(apd(worldPoses(futures, J), 3)).toBeGreaterThan(apdFactor(T) * spread);
+    // two samples whose every root-relative joint is 5 cm apart at every frame: equality, far from sqrt(18) alone
+    const a = Float64Array.from({ length: T * J * 3 }, (_, i) => (i % (J * 3) < 3 ? 0 : Math.sin(i)));
+    const b = a.map((v, i) => (i % 3 === 1 && i % (J * 3) >= 3 ? v + 0.05 : v));
+    const pair = Float64Array.from([...a, ...b]);
+    expect(poseSpreadCm(pair, 2, J).overFrames).toBeCloseTo(5 * (J - 1) / J, 10);
+    expect(apd(worldPoses(pair, J), 2)).toBeCloseTo(apdFactor(T) * (poseSpreadCm(pair, 2, J).overFrames / 100) * Math.sqrt(J / (J - 1)), 10);
   });
 
   it('pose spread: the mean over pairs of the mean per-joint root-relative distance, last frame and over frames', () => {

@@ -85,6 +85,15 @@ export function apd(futures: Motion, k: number): number {
   return (2 * sum) / (k * (k - 1)); // each unordered pair stands for two ordered ones
 }
 
+/**
+ * How many times the pose spread (mean per-joint distance between two samples, realism.ts) APD is at
+ * least: a pair's APD is the L2 norm of its frames x joints joint distances, and an L2 norm of n
+ * numbers is at least sqrt(n) times their mean. The read-out's sentence on field units names it.
+ */
+export function apdFactor(frames: number, joints = 18): number {
+  return Math.sqrt(joints * frames);
+}
+
 /** The skeleton's bones as [parent, child], in joint order (as export/data/skeleton.py's `bones`). */
 export function bones(skeleton: Skeleton): [number, number][] {
   const out: [number, number][] = [];

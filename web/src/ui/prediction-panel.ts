@@ -4,6 +4,7 @@
 // The read-out leads with numbers in centimetres (per-joint error, pose spread); the field's
 // whole-pose ADE, FDE and APD follow as "field units". Every number says what it is on hover (title)
 // and on keyboard focus (a tooltip), and to screen readers (aria-describedby).
+import { apdFactor } from '../metrics/readout';
 import type { Prediction, SampleInfo } from '../predictor/types';
 import { identityCss } from '../viewer/palette';
 import { curvePlot } from './curve-plot';
@@ -212,7 +213,8 @@ function readoutBlock(r: StageReadout, fps: number, tips: HTMLElement, help?: st
     // APD needs two samples (one future has none)
     r.k > 1 ? el('p', { class: 'readout-apd' }, el('span', { class: 'readout-label' }, 'APD (root-relative) '), metric(`${metres(r.apd)} m`, TIPS.apd, tips)) : null);
   const about = el('p', { class: 'muted readout-about' },
-    'The field\'s ADE, FDE and APD add the 18 joints\' distances into one whole-pose distance: about √18 ≈ 4.2 × the per-joint mean. ',
+    'The field\'s ADE and FDE add the 18 joints\' distances into one whole-pose distance: about √18 ≈ 4.2 × the per-joint mean (more when a few joints carry the error). ',
+    r.k > 1 ? `APD puts each sample's whole future, ${r.frames} frames × 18 joints, into one vector: at least √(18 × ${r.frames}) ≈ ${apdFactor(r.frames).toFixed(0)} × the pose spread. ` : '',
     help ? el('a', { href: help, target: '_blank', rel: 'noopener', class: 'readout-help' }, 'How the numbers are defined') : null);
   return el('div', { class: 'stage-readout', 'data-testid': 'readout' }, lead, uncovered, field, about, el('div', { class: 'share-row' }, copy, note));
 }

@@ -112,7 +112,7 @@ export function readoutJson(r: StageReadout, about: Record<string, unknown>): st
     definitions: 'export/eval/realism/mpjpe.py: per-joint error = mean over frames and joints of the per-joint distance '
       + '(root-relative, cm), best of K; pose spread = mean over sample pairs of the mean per-joint distance (cm). '
       + 'export/eval/metrics.py: ADE/FDE whole-pose L2 (WAT Eq. 12, DLow), best of K each on its own, about sqrt(18) = 4.2 '
-      + 'times the per-joint mean; APD (DLow) on root-relative poses; bone-length error against the history\'s mean bone lengths; '
+      + 'times the per-joint mean; APD (DLow) on root-relative poses, at least sqrt(18 x frames) times the pose spread; bone-length error against the history\'s mean bone lengths; '
       + `feet more than ${FOOT_DEPTH} m below the floor`,
     k: r.k, frames: r.frames, truth_frames: r.truthFrames, ground_truth_covers_futures: r.covered,
     per_joint_cm_best_of_k: r.bestPerJointCm ? errors(r.bestPerJointCm) : null,
