@@ -2,7 +2,8 @@
 // history end and seed, one labelled row per model on stage, each with its read-out, kept in the link,
 // and in an embed through its compare attribute; an unknown model id is named. The closest-to-truth
 // highlight marks one sample in each row, and the exports (JSON, CSV) and the read-out's JSON hold
-// every compared model, labelled, the ground truth once and the foot-planting option. A refusal: the stage
+// every compared model, labelled, the ground truth once and the foot-planting option; at K = 5 every figure's
+// label (the model's short name) lies inside the stage. A refusal: the stage
 // drops the previous model's futures, says so in one sentence and offers the nearest start the method
 // accepts, which then predicts; a clip with no such start says so.
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -91,6 +92,37 @@ describe('compare mode and refusals', () => {
     await predicted(page);
     const single = await page.evaluate(() => Array.from(window.motionFutures!.predictor.last!.prediction.futures.subarray(0, 999)));
     expect(digest(single)).toBe(digest(rows[1].digest!));
+    expect(session.problems).toEqual(NO_PROBLEMS);
+  });
+
+  it('at the first view\'s K = 5, every figure label lies whole inside the stage, the model named short', async () => {
+    await waiting(page);
+    await page.goto(`${baseUrl}?compare=${COMPARE}`);
+    await predicted(page);
+    await page.waitForSelector(`body[data-compare-models="${COMPARE}"]`, { state: 'attached' });
+    expect(await page.evaluate(() => document.body.dataset.predictionK)).toBe('5');
+    const length = await page.evaluate(() => window.motionFutures!.player.state.length);
+    const origin = Math.max(A.params.history_frames, B.params.history_frames);
+    for (const frame of [origin, Math.floor((origin + length) / 2), length - 1]) {
+      await figuresAt(page, frame);
+      await settle(page);
+      const shown = await page.evaluate(() => {
+        const root = document.querySelector('motion-futures')!.shadowRoot!;
+        const stage = root.querySelector('#viewer')!.getBoundingClientRect();
+        return { stage: { left: stage.left, right: stage.right, top: stage.top, bottom: stage.bottom },
+          labels: [...root.querySelectorAll<HTMLElement>('.figure-label-prediction')].filter((l) => l.style.display !== 'none')
+            .map((l) => { const b = l.getBoundingClientRect(); return { text: l.textContent!, left: b.left, right: b.right, top: b.top, bottom: b.bottom }; }) };
+      });
+      expect(shown.labels, `frame ${frame}`).toHaveLength(10);
+      for (const l of shown.labels) {
+        const where = `frame ${frame}: ${l.text}`;
+        expect(l.text.startsWith(`${shortLabel(A)} #`) || l.text.startsWith(`${shortLabel(B)} #`), where).toBe(true);
+        expect(l.left, where).toBeGreaterThanOrEqual(shown.stage.left);
+        expect(l.right, where).toBeLessThanOrEqual(shown.stage.right);
+        expect(l.top, where).toBeGreaterThanOrEqual(shown.stage.top);
+        expect(l.bottom, where).toBeLessThanOrEqual(shown.stage.bottom);
+      }
+    }
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 

@@ -92,6 +92,17 @@ describe('compare mode in the permalink', () => {
     expect(Array.from(truth[0].positions.subarray(0, 12 * J * 3))).toEqual(Array.from(truth[1].positions));
   });
 
+  it('names each row by the model\'s short name: no description after a colon or in a parenthesis of several words', () => {
+    expect(shortLabel({ label: 'WAT (RNN): action sequences' })).toBe('WAT (RNN)');
+    expect(shortLabel({ label: 'WAT (Transformer): action sequences' })).toBe('WAT (Transformer)');
+    expect(shortLabel({ label: 'LCP-VAE (learned conditional prior)' })).toBe('LCP-VAE');
+    expect(shortLabel({ label: 'Keyposes (keypose classification)' })).toBe('Keyposes');
+    expect(shortLabel({ label: 'Zero-velocity (baseline)' })).toBe('Zero-velocity (baseline)');
+    expect(shortLabel({ label: '(two words)' })).toBe('(two words)');   // never an empty name
+    // every served model: short enough for a figure label ("<name> #10 · closest to truth" over a figure)
+    for (const m of manifest.models) expect(shortLabel(m).length, m.label).toBeLessThanOrEqual(24);
+  });
+
   it('lays out one row per method side by side, one column per method overlaid', () => {
     const tracks = [0, 1].flatMap((group) => [
       { role: 'history' as const, group }, { role: 'prediction' as const, sample: 0, group }, { role: 'prediction' as const, sample: 1, group },

@@ -126,9 +126,12 @@ export function exportRuns(rows: readonly CompareRow[], seed: number): RunPredic
   }] : []));
 }
 
-/** A model's name without its description ("WAT (RNN): action sequences" -> "WAT (RNN)"): figure labels stay short. */
+/** A model's name without its description, after a colon or in a parenthesis of several words
+ *  ("WAT (RNN): action sequences" -> "WAT (RNN)", "LCP-VAE (learned conditional prior)" -> "LCP-VAE"):
+ *  figure labels stay short enough to sit over their figures, six or more to a row. */
 export function shortLabel(entry: Pick<ModelEntry, 'label'>): string {
-  return entry.label.split(':')[0].trim();
+  const name = entry.label.split(':')[0].trim();
+  return name.replace(/\s*\([^()]*\s[^()]*\)$/, '').trim() || name;
 }
 
 /** "8.1 cm" from a read-out's per-joint error, best of K (null: no ground truth covers the futures). */
