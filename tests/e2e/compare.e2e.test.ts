@@ -230,6 +230,26 @@ describe('compare mode and refusals', () => {
     const labels = await page.locator('#c .figure-label-prediction').allTextContents();
     expect(labels.filter((l) => l.startsWith(`${shortLabel(A)} #`)).length).toBe(2);
     expect(labels.filter((l) => l.startsWith(`${shortLabel(B)} #`)).length).toBe(2);
+    // the same history end and seed for both models, each in its own place on stage, and the embed's
+    // link to the full page keeps compare mode
+    const shown = await page.evaluate(() => {
+      const app = (document.getElementById('c') as HTMLElement & { app: NonNullable<typeof window.motionFutures> }).app;
+      const last = app.predictor.last!;
+      app.player.pause();
+      app.player.seek(app.player.state.length - 1);
+      return { seed: last.seed, rows: last.compare!.map((r) => ({ id: r.entry.id, end: r.start + r.entry.params.history_frames, k: r.prediction?.k })),
+        figures: app.view.figures().filter((f) => f.role === 'prediction').map((f) => ({ group: f.group, x: (f.box.left + f.box.right) / 2, y: (f.box.top + f.box.bottom) / 2 })) };
+    });
+    expect(shown.seed).toBe(4);
+    expect(shown.rows.map((r) => [r.id, r.k])).toEqual([[A.id, 2], [B.id, 2]]);
+    expect(shown.rows[0].end).toBe(shown.rows[1].end);
+    const centre = (g: number) => { const fs = shown.figures.filter((f) => f.group === g); return [fs.reduce((a, f) => a + f.x, 0) / fs.length, fs.reduce((a, f) => a + f.y, 0) / fs.length]; };
+    expect(shown.figures.filter((f) => f.group === 0)).toHaveLength(2);
+    expect(shown.figures.filter((f) => f.group === 1)).toHaveLength(2);
+    expect(Math.hypot(centre(0)[0] - centre(1)[0], centre(0)[1] - centre(1)[1]), 'the two models apart on stage').toBeGreaterThan(30);
+    const open = new URL((await page.locator('#c .mini-open').getAttribute('href'))!);
+    expect(open.searchParams.get('compare')).toBe(COMPARE);
+    expect(open.searchParams.get('seed')).toBe('4');
     expect(session.problems.pageErrors).toEqual([]);
     session.resetProblems();
   });
