@@ -413,6 +413,26 @@ describe.each(HOSTS)('the embed on $name', ({ shot, body }) => {
     });
     expect(bar).toEqual({ overlaps: [], outside: [], clipped: [], readout: bar.readout });
     expect(bar.readout).toBeGreaterThan(80);
+    // the whole minimal widget fits its 320 x 360 element: it never scrolls inside itself, and the bar under
+    // the playback (what is shown, "New futures", "Open in motion-futures") lies inside it without overlap
+    const mini = await page.evaluate(() => {
+      const root = document.getElementById('n')!.shadowRoot!;
+      const host = document.getElementById('n')!.getBoundingClientRect();
+      const widget = root.querySelector<HTMLElement>('.mf-widget')!;
+      const shown = [...root.querySelector('.mini-bar')!.children].filter((c) => (c as HTMLElement).checkVisibility())
+        .map((c) => ({ r: c.getBoundingClientRect(), cls: c.className }));
+      const overlaps: string[] = [];
+      for (const [i, p] of shown.entries()) for (const q of shown.slice(i + 1)) {
+        if (p.r.left < q.r.right - 1 && q.r.left < p.r.right - 1 && p.r.top < q.r.bottom - 1 && q.r.top < p.r.bottom - 1) overlaps.push(`${p.cls} / ${q.cls}`);
+      }
+      const caption = root.querySelector<HTMLElement>('.mini-caption')!;
+      return { scrolls: widget.scrollHeight > widget.clientHeight + 1, overlaps, height: host.height,
+        outside: shown.filter((c) => c.r.left < host.left - 0.5 || c.r.right > host.right + 0.5 || c.r.top < host.top - 0.5 || c.r.bottom > host.bottom + 0.5).map((c) => c.cls),
+        parts: shown.map((c) => c.cls.split(' ')[0]), caption: { text: caption.textContent, title: caption.title } };
+    });
+    expect(mini).toEqual({ scrolls: false, overlaps: [], height: 360, outside: [], parts: ['mini-caption', 'text-button', 'mini-open'], caption: mini.caption });
+    expect(mini.caption.title).toBe(mini.caption.text);   // one line, cut with an ellipsis; the whole on hover
+    expect(mini.caption.text).toContain(' · ');   // model · clip
 
     const frame = page.frame({ url: /embed\.html/ })!;
     await page.locator('#fr').scrollIntoViewIfNeeded();

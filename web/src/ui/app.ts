@@ -560,6 +560,7 @@ function mountMinimalBar(container: HTMLElement, handlers: { onNewFutures(): voi
     /** `action`: the button's text, or null to hide it (a deterministic model: a new seed changes nothing). */
     update(s: Shareable, model: string, clip: string, action: string | null) {
       caption.textContent = [model, clip].filter(Boolean).join(' · ');
+      caption.title = caption.textContent;
       open.hidden = 'unlinkable' in s;
       if (!('unlinkable' in s)) open.href = s.link;
       again.hidden = action === null;
