@@ -589,3 +589,24 @@ describe('the embed on a project page, on a phone', () => {
     }
   });
 });
+
+// The other side of "registers no service worker": the same iframe registers one when the host asks
+// (offline=1), so the checks above would see a registration if the embed made one.
+describe('embed.html with offline=1', () => {
+  it('registers the site\'s service worker when the host asks for offline use', async () => {
+    const session = await openBrowser({ viewport: { width: 900, height: 700 } });
+    try {
+      const { page } = session;
+      await page.route(HOST_URL, (route) => route.fulfill({ status: 200, contentType: 'text/html',
+        body: hostPage(`<iframe id="f" src="${IFRAME_SRC.replace('controls=full', 'controls=minimal')}&offline=1" style="${RESPONSIVE}"></iframe>`) }));
+      await page.goto(HOST_URL);
+      await page.frameLocator('#f').locator('motion-futures[data-predict-status="done"]').waitFor({ state: 'attached', timeout: 120_000 });
+      const frame = page.frame({ url: /embed\.html/ })!;
+      await expect.poll(() => frame.evaluate(() => navigator.serviceWorker.getRegistrations().then((r) => r.map((x) => new URL(x.scope).pathname))),
+        { timeout: 60_000 }).toEqual([new URL(baseUrl).pathname]);
+      expect(await page.evaluate(() => navigator.serviceWorker.getRegistrations().then((r) => r.length))).toBe(1);   // same origin: the host sees it
+    } finally {
+      await session.close();
+    }
+  });
+});
