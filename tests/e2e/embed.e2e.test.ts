@@ -8,6 +8,8 @@ import { openBrowser, type BrowserSession } from './browser';
 import { defaultHistory, index, stageModel } from './data';
 import { blogPage, projectPage, type HostPageParts } from './host-pages';
 import { pixelStats } from './pixels';
+import { clipTitle } from '../../web/src/ui/clip-name';
+import { shortLabel } from '../../web/src/ui/compare';
 
 const baseUrl = inject('baseUrl');
 const origin = new URL(baseUrl).origin;
@@ -431,8 +433,9 @@ describe.each(HOSTS)('the embed on $name', ({ shot, body }) => {
         parts: shown.map((c) => c.cls.split(' ')[0]), caption: { text: caption.textContent, title: caption.title } };
     });
     expect(mini).toEqual({ scrolls: false, overlaps: [], height: 360, outside: [], parts: ['mini-caption', 'text-button', 'mini-open'], caption: mini.caption });
-    expect(mini.caption.title).toBe(mini.caption.text);   // one line, cut with an ellipsis; the whole on hover
-    expect(mini.caption.text).toContain(' · ');   // model · clip
+    // one line, cut with an ellipsis: the model's short name and the clip; the whole label on hover
+    expect(mini.caption.text).toBe(`${shortLabel(stageModel)} · ${clipTitle(index.clips.find((c) => c.name === CLIP_B)!)}`);
+    expect(mini.caption.title).toBe(`${stageModel.label} · ${clipTitle(index.clips.find((c) => c.name === CLIP_B)!)}`);
 
     const frame = page.frame({ url: /embed\.html/ })!;
     await page.locator('#fr').scrollIntoViewIfNeeded();

@@ -42,7 +42,7 @@ import { mountPhaseLabel, mountRangeNotice, mountStageStatus, mountStageToolbar 
 import { mountStageView, type StageChoices } from './stage-view';
 import { startWorker, workerClient } from './predictor-start';
 import { mountComparePanel, type ComparePanel } from './compare-panel';
-import { exportRuns } from './compare';
+import { exportRuns, shortLabel } from './compare';
 import { mountRefusalNotice } from './refusal-notice';
 
 /** How an instance looks and starts, apart from the prediction state. */
@@ -559,8 +559,9 @@ function mountMinimalBar(container: HTMLElement, handlers: { onNewFutures(): voi
   return {
     /** `action`: the button's text, or null to hide it (a deterministic model: a new seed changes nothing). */
     update(s: Shareable, model: string, clip: string, action: string | null) {
-      caption.textContent = [model, clip].filter(Boolean).join(' · ');
-      caption.title = caption.textContent;
+      // the model's short name on the line ("WAT (RNN)"), its whole label in the title
+      caption.textContent = [model ? shortLabel({ label: model }) : '', clip].filter(Boolean).join(' · ');
+      caption.title = [model, clip].filter(Boolean).join(' · ');
       open.hidden = 'unlinkable' in s;
       if (!('unlinkable' in s)) open.href = s.link;
       again.hidden = action === null;
