@@ -1,6 +1,7 @@
 // LCP-VAE and Keyposes in a real Chromium: K = 10 futures from a history of the test split, drawn
 // on stage, differing from each other (LCP: positions; Keyposes: label sequences); controls cannot
-// leave their range, and a link that asks for it is named.
+// leave their range, and a link that asks for it is named. Each number the method adds under the futures
+// (LCP-VAE's diversity, Keyposes' counts and pace) explains itself on hover and focus.
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
 import type { Page } from 'playwright-core';
 import type { BrowserSession } from './browser';
@@ -22,6 +23,25 @@ const spread = (page: Page) => page.evaluate(() => {
   }
   return Math.sqrt(total / (p.k * n / 3));
 });
+
+/** The method's own read-outs under the futures: each number takes the focus and explains itself (its
+ *  title, and the hidden sentence it is described by, the same), in words of its own. */
+const ownNumbers = (page: Page) => page.locator('.readouts li').evaluateAll((lis) => lis.map((li) => {
+  const n = li.querySelector<HTMLElement>('.metric');
+  const root = li.getRootNode() as ShadowRoot;
+  return { label: li.querySelector('.readout-label')?.textContent ?? '', tab: n?.tabIndex ?? -1, title: n?.getAttribute('title') ?? '',
+    described: root.getElementById(n?.getAttribute('aria-describedby') ?? '')?.textContent ?? '' };
+}));
+
+function expectExplained(numbers: Awaited<ReturnType<typeof ownNumbers>>, labels: string[]): void {
+  expect(numbers.map((x) => x.label)).toEqual(labels);
+  for (const x of numbers) {
+    expect(x.tab, x.label).toBe(0);
+    expect(x.title.length, x.label).toBeGreaterThan(40);
+    expect(x.title, x.label).not.toMatch(/as the method measures it/);   // the fallback: the method gave no words
+    expect(x.described, x.label).toBe(x.title);
+  }
+}
 
 async function predictTen(page: Page, model: string): Promise<void> {
   await page.locator('#model-select').selectOption(model);
@@ -49,6 +69,15 @@ describe('LCP-VAE and Keyposes in the browser', () => {
     await predictTen(page, 'lcp-vae');
     expect(await spread(page)).toBeGreaterThan(0.01);
     expect(await page.locator('.sample-item').count()).toBe(10);
+    // its diversity beside the read-out's APD: what it is and how it differs, and the bound it names holds
+    const numbers = await ownNumbers(page);
+    expectExplained(numbers, ['diversity']);
+    expect(numbers[0].title).toMatch(/Eq\. 10.*Unlike APD.*at least √18 ≈ 4\.2 × the pose spread/);
+    const { diversity, spreadCm } = await page.evaluate(() => {
+      const last = window.motionFutures!.predictor.last!;
+      return { diversity: last.prediction.readouts![0].value, spreadCm: last.readout!.spreadCm.overFrames };
+    });
+    expect(diversity).toBeGreaterThanOrEqual(Math.sqrt(18) * spreadCm / 100 - 1e-4);
     await stageShot(session, page, 'lcp-vae-k10.png', 45);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
@@ -72,6 +101,7 @@ describe('LCP-VAE and Keyposes in the browser', () => {
     expect(labels.every((l) => l.length >= 2)).toBe(true);
     expect(new Set(labels.map((l) => l.join(','))).size).toBeGreaterThan(1);
     expect(await spread(page)).toBeGreaterThan(0.01);
+    expectExplained(await ownNumbers(page), ['observed keyposes', 'keyposes per future', 'travel pace (history / training)']);
     await stageShot(session, page, 'keyposes-k10.png', 45);
     expect(session.problems).toEqual(NO_PROBLEMS);
   });

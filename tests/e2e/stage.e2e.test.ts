@@ -250,9 +250,11 @@ describe('the first view (1440 x 900)', () => {
   });
 
   it('every number in the read-out explains itself on hover (title) and on keyboard focus (tooltip, description)', async () => {
-    const numbers = page.locator('.stage-readout .metric');
+    // the read-out's numbers, then the method's own under the futures (WAT: stopped, mean length, flagged)
+    const numbers = page.locator('.stage-readout .metric, .readouts .metric');
     const count = await numbers.count();
     expect(count).toBeGreaterThanOrEqual(3); // spread twice and APD at least
+    expect(await page.locator('.readouts li').count(), 'each of the method\'s numbers is a .metric').toBe(await page.locator('.readouts .metric').count());
     for (let i = 0; i < count; i++) {
       const n = numbers.nth(i);
       const info = await n.evaluate((e) => {

@@ -256,8 +256,13 @@ export class KeyposesPredictor implements Predictor {
     return {
       k, frames: horizon, joints: j, futures: world, lengths: Int32Array.from({ length: k }, () => horizon), samples, notes: [],
       ghosts: { frames: ghostFrames, poses: ghostPoses },
-      readouts: [{ label: 'observed keyposes', value: obs.frames.length }, { label: 'keyposes per future', value: shownTotal / k },
-        { label: 'travel pace (history / training)', value: Math.round(scale * 1e4) / 1e4 }],
+      readouts: [
+        { label: 'observed keyposes', value: obs.frames.length,
+          about: 'Keyposes found in the history (the frames linear interpolation cannot skip), each labelled by its nearest cluster centre: what the GRU reads.' },
+        { label: 'keyposes per future', value: shownTotal / k,
+          about: 'Keyposes each future samples on average (a label and a duration each) until the horizon is covered.' },
+        { label: 'travel pace (history / training)', value: Math.round(scale * 1e4) / 1e4,
+          about: 'How fast the history\'s root travels against the training futures of its keyposes (1: as fast); the futures\' root paths are scaled by it.' }],
       margins,
     };
   }

@@ -129,7 +129,9 @@ export class LcpVaePredictor implements Predictor {
       lengths: Int32Array.from({ length: k }, () => horizon),
       samples: Array.from({ length: k }, () => ({ length: horizon, stopped: false, segments: [{ start: 0, length: horizon }] })),
       notes: scale === 0 && k > 1 ? ['sigma scale 0: every sample is the most likely future'] : [],
-      readouts: [{ label: 'diversity', value: diversity(futures, k, horizon, stride), unit: 'm' }],
+      readouts: [{ label: 'diversity', value: diversity(futures, k, horizon, stride), unit: 'm',
+        about: 'LCP-VAE\'s diversity (WAT Eq. 10): the whole-pose L2 distance between two samples at each frame, averaged over frames and pairs (root-relative). '
+          + 'Unlike APD it does not grow with the futures\' length: at least √18 ≈ 4.2 × the pose spread.' }],
     };
   }
 }

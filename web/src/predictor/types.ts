@@ -95,8 +95,9 @@ export interface Prediction {
   notes: string[];
   curves?: Curve[];
   ghosts?: Ghosts;
-  /** Short measured read-outs, e.g. { label: 'diversity', value: 0.41, unit: 'm' }. */
-  readouts?: { label: string; value: number; unit?: string }[];
+  /** Short measured read-outs, e.g. { label: 'diversity', value: 0.41, unit: 'm', about: '…' }; `about`
+   *  is the one-line explanation the page shows on hover and focus. */
+  readouts?: { label: string; value: number; unit?: string; about?: string }[];
   /** Distance of each thresholded decision (stop tests, sampled uniforms) to its threshold. */
   margins?: number[];
   /** History quantities outside the training envelope; the prediction is still made, marked as out of range. */

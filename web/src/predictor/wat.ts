@@ -140,9 +140,12 @@ export class WatPredictor implements Predictor {
         levels: [{ label: 'delta', value: delta }], frames: [{ label: 'T_min', frame: tMin - 1 }], log: true,
       }],
       readouts: [
-        { label: 'stopped', value: (100 * (k - never)) / k, unit: '%' },
-        { label: 'mean length', value: samples.reduce((c, s) => c + s.length, 0) / k / this.ctx.fps, unit: 's' },
-        { label: 'flagged transitions', value: flagged },
+        { label: 'stopped', value: (100 * (k - never)) / k, unit: '%',
+          about: 'Share of the K samples in which every action stopped by the variance rule (Eq. 8: the last Q frames vary less than δ) before its maximum length T_max.' },
+        { label: 'mean length', value: samples.reduce((c, s) => c + s.length, 0) / k / this.ctx.fps, unit: 's',
+          about: 'The samples\' mean length in seconds: each action runs until it stops (Eq. 8) or reaches T_max.' },
+        { label: 'flagged transitions', value: flagged,
+          about: 'Joins (history to first action, action to action) whose smoothness loss (Eq. 4) is above the model\'s threshold: a visible jerk there.' },
       ],
     };
   }

@@ -111,8 +111,10 @@ export function mountPredictionPanel(container: HTMLElement, onSelect: (sample: 
     const summary = el('p', { class: 'muted prediction-summary', 'aria-live': 'polite' },
       `${p.k} ${p.k === 1 ? 'future' : 'futures'}, ${seconds(p.frames, fps)} at most, predicted in ${Math.round(ms)} ms.`,
       extras.outOfRange ? el('strong', { class: 'out-of-range-mark' }, ' Out of the training range.') : null);
-    const readouts = (p.readouts ?? []).map((x) => el('li', {}, el('span', { class: 'readout-label' }, x.label), ' ', el('strong', {}, fmt(x.value, x.unit))));
     const tips = el('div', { class: 'metric-tips', hidden: true });
+    // the predictor's own numbers explain themselves as the read-out's do (hover, focus, screen readers)
+    const readouts = (p.readouts ?? []).map((x) => el('li', {}, el('span', { class: 'readout-label' }, x.label), ' ',
+      metric(fmt(x.value, x.unit), x.about ?? `${x.label}, as the method measures it on these futures.`, tips)));
     const numbers = r ? readoutBlock(r, fps, tips, options.numbersHelp, extras.readoutJson) : null;
     const samples = p.samples.map((s, i) => {
       const segs = s.segments.map((g) => {
