@@ -255,6 +255,10 @@ describe('the first view (1440 x 900)', () => {
     const count = await numbers.count();
     expect(count).toBeGreaterThanOrEqual(3); // spread twice and APD at least
     expect(await page.locator('.readouts li').count(), 'each of the method\'s numbers is a .metric').toBe(await page.locator('.readouts .metric').count());
+    // a share of the K samples reads as one ("0 %", "40 %", "33.3 %"), not "0.000 %"
+    const shares = (await page.locator('.readouts .metric').allTextContents()).filter((t) => t.endsWith('%'));
+    if (stageModel.method === 'wat') expect(shares, 'WAT\'s "stopped"').toHaveLength(1);
+    for (const t of shares) expect(t).toMatch(/^\d+(\.\d)? %$/);
     for (let i = 0; i < count; i++) {
       const n = numbers.nth(i);
       const info = await n.evaluate((e) => {

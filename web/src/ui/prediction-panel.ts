@@ -40,6 +40,7 @@ export function seconds(frames: number, fps: number): string {
 
 function fmt(v: number, unit?: string): string {
   if (!unit && Number.isInteger(v)) return String(v);   // counts, e.g. flagged transitions
+  if (unit === '%') return `${Number(v.toFixed(1))} %`;   // a share of K samples: "0 %", "33.3 %", "100 %"
   const digits = Math.abs(v) >= 10 ? 1 : Math.abs(v) >= 1 ? 2 : 3;
   return `${v.toFixed(digits)}${unit ? ` ${unit}` : ''}`;
 }
