@@ -90,6 +90,19 @@ def prune(labels: list[int] | np.ndarray) -> list[int]:
             if i == 0 or i == len(labels) - 1 or not (labels[i - 1] == labels[i] == labels[i + 1])]
 
 
+def bound_gaps(frames: list[int], longest: int) -> list[int]:
+    """Keypose frames with a frame added every `longest` frames wherever two are more than `longest`
+    apart (the remainder last), so no gap exceeds the longest duration class and each added step is
+    played at its own length (a labelled variant of section 3.2's pruning, `split_holds`; training only:
+    the predictors' durations are the classes' lengths, never longer)."""
+    if longest < 1:
+        raise ValueError(f"the longest gap must be at least 1 frame, got {longest}")
+    out = list(frames[:1])
+    for a, b in zip(frames, frames[1:]):
+        out += list(range(a + longest, b, longest)) + [b]
+    return out
+
+
 def duration_class(frames: int, bounds: tuple[int, ...] = DURATION_BOUNDS) -> int:
     """The class whose half-open interval holds `frames` (the last class is open above)."""
     if frames < bounds[0]:

@@ -158,3 +158,27 @@ def test_a_missing_centres_file_is_named(tmp_path):
     p = load_predictor(ENTRY["id"], tmp_path)
     with pytest.raises(FileNotFoundError, match="keyposes.centres.json: keypose centres file missing"):
         p.predict(_history(WALK, START, 30), Request(k=2))
+
+
+@pytest.mark.parametrize("split_holds", [False, True])
+def test_a_held_pose_in_a_training_future_is_a_run_of_its_label_only_with_split_holds(clips, split_holds):
+    """30 frames of a walk, then the last pose held for 4 s: pruned (sec. 3.2), the hold is one 'very long'
+    step, played as 30 frames; split, it is a run of the held pose's own label, each step at most 30."""
+    from export.data.windows import Window
+    from export.ops import keyposes as kp
+    from export.ops.facing import root_relative
+    from export.ops.proximity import face_forward
+    cfg = override(CFG, **{**TINY, "future_frames": 150, "keyposes.clusters": 3, "keyposes.split_holds": split_holds})
+    method = method_for(cfg)
+    walk = clips["walk"].positions[:31]
+    motion = np.concatenate([walk, np.repeat(walk[-1:], 150, axis=0)])
+    method.centres = face_forward(root_relative(walk[[0, 15, 30]]))
+    row = method._sequence(Window("walk", "walk", motion, np.arange(len(motion))))
+    m = int(row["fut_mask"].sum())
+    durations = [kp.DURATION_LENGTHS[c] for c in row["fut_duration"][:m]]
+    labels = row["fut_label"][:m].tolist()
+    if split_holds:
+        assert m >= 4 and labels.count(labels[-1]) >= 4, labels       # the hold: its label again and again
+        assert max(row["fut_duration"][:m]) == len(kp.DURATION_LENGTHS) - 1 and sum(durations) >= 120
+    else:
+        assert m <= 1 and sum(durations) <= 30, (labels, durations)    # left after one step of 30 frames

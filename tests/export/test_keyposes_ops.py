@@ -79,6 +79,17 @@ def test_nearest_centre_and_pruning():
     assert kp.prune([7, 7, 7, 7]) == [0, 3] and kp.prune([4]) == [0] and kp.prune([]) == []
 
 
+def test_bound_gaps_splits_only_gaps_longer_than_the_longest_class():
+    assert kp.bound_gaps([0, 5, 35], 30) == [0, 5, 35]                 # 30 frames apart: left alone
+    assert kp.bound_gaps([0, 90], 30) == [0, 30, 60, 90]
+    assert kp.bound_gaps([10, 45], 30) == [10, 40, 45]                  # steps of 30, the remainder last
+    out = kp.bound_gaps([0, 3, 100, 161, 170], 30)
+    assert set([0, 3, 100, 161, 170]) <= set(out) and np.diff(out).max() <= 30 and out == sorted(out)
+    assert kp.bound_gaps([], 30) == [] and kp.bound_gaps([7], 30) == [7]
+    with pytest.raises(ValueError, match="at least 1 frame"):
+        kp.bound_gaps([0, 5], 0)
+
+
 def test_duration_classes_are_the_papers_scaled_to_30_hz():
     assert len(kp.DURATION_BOUNDS) == len(kp.DURATION_LENGTHS) == 5
     np.testing.assert_allclose(np.asarray(kp.DURATION_BOUNDS[1:]) / np.array([4, 10, 14, 25]), 1.2, atol=0.05)
