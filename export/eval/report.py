@@ -569,6 +569,13 @@ def _variants(doc: dict) -> list[str]:
               "travel while a foot is on the floor, so that foot stays put in the world (export/ops/foot_plant.py; "
               "heights, root-relative poses and lengths unchanged). Rows \"own root (feet not planted)\" keep each "
               "method's own root travel, on the same windows.",
+              "- **Training variants** (ours, labelled config keys; each served config says whether it uses one, and "
+              "each choice's measurement is in a comment beside it): slowed same-action pairs (`augment`, "
+              "export/ops/time_scale.py); a speed term on a future drawn from the prior (`loss.prior_speed`, "
+              "export/ops/speed_term.py); the root read as per-frame steps and the history's steps beside its poses "
+              "(`model.root_input`, `model.history_steps`, export/models/inputs.py); for Keyposes, training futures "
+              "with a keypose every 30 frames inside longer gaps, so a held pose is learnt as its own label (sec. 3.2 "
+              "prunes it to one 30-frame step; `keyposes.split_holds`, export/ops/keyposes.py).",
               "- **Keyposes' interpolation**: the paper's tables use linear interpolation between keyposes (rows "
               "\"linear\", the claims' rows); the site serves the refinement network (row \"refined: served\").",
               f"- **Keypose extraction**: the paper's text stops splitting a segment on the mean error (served and "
