@@ -13,6 +13,7 @@ import { openBrowser, type BrowserSession } from '../tests/e2e/browser';
 import { ROOT } from '../tests/e2e/server';
 import { buildSite, buildTree, startPreview, type PreviewServer as Served } from '../tests/e2e/server';
 import type { BenchCase } from '../web/src/bench/main';
+import { OPTIMIZATION_LEVELS, SESSION_OPTIMIZATION } from '../web/src/predictor/ort-runner';
 
 interface Plan {
   runs: number;
@@ -36,8 +37,8 @@ const WARM_GRAPH_MS = 300;
 // A fresh graph worker starts in V8's baseline code and tiers hot functions up in the background:
 // wat-rnn/decoder/b10 ran 7.6 ms after 300 ms of warm-up and 5.4-5.8 ms after 1 s.
 const WARM_FRESH_MS = 1000;
-// Session optimisation levels tried on the served graph (the site uses 'all').
-const LEVELS = ['disabled', 'basic', 'extended'] as const;
+// Session optimisation levels tried on the served graph besides the site's own.
+const LEVELS = OPTIMIZATION_LEVELS.filter((l) => l !== SESSION_OPTIMIZATION);
 
 const started = Date.now();
 const log = (text: string) => console.log(`bench: ${((Date.now() - started) / 1000).toFixed(0).padStart(4)} s  ${text}`);
@@ -328,7 +329,7 @@ export async function main(planPath: string, outPath: string): Promise<void> {
     // 'software' or 'gpu': what the stage found (it draws without multisampling on a software renderer)
     const renderer = fr.find((f) => f.renderer)?.renderer ?? null;
     const ortWeb = JSON.parse(readFileSync(resolve(ROOT, 'node_modules/onnxruntime-web/package.json'), 'utf8')).version;
-    writeFileSync(outPath, JSON.stringify({ ...doc, renderer, node: process.version, onnxruntime_web: ortWeb, build_ms: buildMs,
+    writeFileSync(outPath, JSON.stringify({ ...doc, session_optimization: SESSION_OPTIMIZATION, renderer, node: process.version, onnxruntime_web: ortWeb, build_ms: buildMs,
       navigation: nav, frames: fr, fps_seconds: FPS_SECONDS, notes }));
   } finally {
     await s.stop();

@@ -79,7 +79,8 @@ def machine(browser: dict, load_start: float) -> dict:
         pass
     return {"cpu": cpu, "vector": vector, "cores": os.cpu_count(), "os": f"{platform.system()} {platform.release()}",
             "chromium": browser.get("chromium"), "renderer": browser.get("renderer"), "node": browser.get("node"),
-            "onnxruntime_web": browser.get("onnxruntime_web"), "python": platform.python_version(),
+            "onnxruntime_web": browser.get("onnxruntime_web"),
+            "session_optimization": browser.get("session_optimization", "all"), "python": platform.python_version(),
             "onnxruntime": onnxruntime.__version__, "load_start": load_start, "load_end": os.getloadavg()[0]}
 
 

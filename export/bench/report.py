@@ -358,7 +358,7 @@ def markdown(doc: dict) -> str:
            "## Machine", "",
            f"- CPU: {m['cpu']}, {m['cores']} cores ({', '.join(m.get('vector') or ['vector extensions unknown'])}); {m['os']}",
            f"- Browser: {m['chromium']} (headless, {_renderer(m.get('renderer'))}), onnxruntime-web {m['onnxruntime_web']} "
-           "(wasm, 1 thread, graph optimisation 'all')",
+           f"(wasm, 1 thread, session graph optimisation '{m.get('session_optimization', 'all')}')",
            f"- Node {m['node']}; Python {m['python']}, onnxruntime {m['onnxruntime']} (1 thread)",
            f"- Run: {doc['date']}, {doc['seconds']:.0f} s in all; load average (1 min) {m['load_start']:.1f} at the "
            f"start, {m['load_end']:.1f} at the end (the benchmark's own browser and server count)"
@@ -422,7 +422,7 @@ def markdown(doc: dict) -> str:
         if not g.get("variants"):
             continue
         nodes = sizes[n["model"]]["graphs"][n["role"]]["nodes"]
-        served = {"name": "served graph, session optimisation 'all' (the site)", "ms": g.get("ms"), "load_ms": g.get("load_ms"),
+        served = {"name": f"served graph, session optimisation '{m.get('session_optimization', 'all')}' (the site)", "ms": g.get("ms"), "load_ms": g.get("load_ms"),
                   "error": g.get("error")}
         nvar = {v["name"]: v for v in n["variants"]} | {served["name"]: {"native_ms": n["native_ms"], "nodes": nodes, "rel_diff": 0.0}}
         for v in [served] + g["variants"]:

@@ -1,7 +1,8 @@
 // Times one ONNX graph on given inputs with the same onnxruntime-web settings as the predictor
-// worker (wasm, 1 thread, optimisation 'all'), for the export experiments in bench/. With
+// worker (wasm, 1 thread, its optimisation level), for the export experiments in bench/. With
 // `profile`, it also returns onnxruntime's per-node profile: the wasm build prints profile
 // events to the console, so console.log is wrapped before onnxruntime loads and those lines kept.
+import { SESSION_OPTIMIZATION } from '../predictor/ort-runner';
 import type { GraphJob, GraphResult } from './protocol';
 
 const scope = self as unknown as DedicatedWorkerGlobalScope;
@@ -42,7 +43,7 @@ async function time(job: GraphJob): Promise<GraphResult> {
   const ort = await runtime();
   const t0 = performance.now();
   const session = await ort.InferenceSession.create(new Uint8Array(job.bytes), {
-    executionProviders: ['wasm'], graphOptimizationLevel: job.optimization ?? 'all', enableProfiling: !!job.profile,
+    executionProviders: ['wasm'], graphOptimizationLevel: job.optimization ?? SESSION_OPTIMIZATION, enableProfiling: !!job.profile,
   });
   const loadMs = performance.now() - t0;
   const feeds: Record<string, InstanceType<Ort['Tensor']>> = {};

@@ -15,7 +15,7 @@ export interface GraphJob {
   /** Keep warming up until this long has passed too (ms). */
   warmupMs?: number;
   runs: number;
-  /** Session graph optimisation level (the site uses 'all'). */
+  /** Session graph optimisation level (default: the site's, predictor/ort-runner.ts SESSION_OPTIMIZATION). */
   optimization?: 'disabled' | 'basic' | 'extended' | 'all';
   /** Also return onnxruntime's per-node profile events (runs are slower then). */
   profile?: boolean;

@@ -6,6 +6,16 @@ import type { GraphTiming } from './protocol';
 import type { FileLoader, GraphRunner, Tensor } from './types';
 
 export type OrtModule = typeof Ort;
+
+/** onnxruntime's session graph optimisation levels, lowest first. */
+export const OPTIMIZATION_LEVELS = ['disabled', 'basic', 'extended', 'all'] as const;
+/** The level of every predictor session. 'disabled': on the 2-core bench machine with a fresh
+ *  profile, the optimiser's own start-up work (run as V8's baseline wasm code, then tiered up in the
+ *  background on the same cores) cost more than it saved. Navigation -> first futures drawn, 7
+ *  navigations of ?model=wat-rnn: median 1396 ms at 'all', 1271 ms at 'disabled'; each graph's run
+ *  stays within 0-30% of 'all' (make bench, "Attempts on the ratio"; wat-rnn's decoder at K = 10:
+ *  7.0 against 6.8 ms). The e2e vectors hold at either level. */
+export const SESSION_OPTIMIZATION: (typeof OPTIMIZATION_LEVELS)[number] = 'disabled';
 export type { FileLoader };
 export type { GraphTiming };
 
@@ -35,7 +45,7 @@ export class OrtRunner implements GraphRunner {
       const spec = this.entry.graphs[role];
       if (!spec) throw new Error(`model ${this.entry.id} has no graph '${role}'`);
       s = Promise.all([this.load(spec.file, onProgress), this.ort]).then(async ([bytes, ort]) => ({
-        session: await ort.InferenceSession.create(bytes, { executionProviders: ['wasm'], graphOptimizationLevel: 'all' }),
+        session: await ort.InferenceSession.create(bytes, { executionProviders: ['wasm'], graphOptimizationLevel: SESSION_OPTIMIZATION }),
         ort,
       }));
       s.catch(() => this.sessions.delete(role)); // a failed load may be retried
