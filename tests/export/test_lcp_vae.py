@@ -192,8 +192,8 @@ def test_sigma_scale_zero_decodes_the_mode_for_every_sample(models_dir, clips):
 
 @pytest.mark.parametrize("frames, controls, message", [
     (9, {}, "history has 9 frames; this model needs at least 10"),
-    (10, {"sigma_scale": 2.5}, "Sigma scale must be between 0 and 2, got 2.5"),
-    (10, {"sigma_scale": -0.1}, "Sigma scale must be between 0 and 2"),
+    (10, {"sigma_scale": 8.5}, "Sigma scale must be between 0 and 8, got 8.5"),
+    (10, {"sigma_scale": -0.1}, "Sigma scale must be between 0 and 8"),
     (10, {"sigma_scale": "wide"}, "Sigma scale must be a number"),
 ])
 def test_bad_input_gives_a_clear_message(models_dir, clips, frames, controls, message):

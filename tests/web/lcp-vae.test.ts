@@ -86,7 +86,7 @@ if (served.length) describe('served LCP-VAE model in Node', () => {
   it('diversity grows with the sigma scale and is 0 at s = 0 (the most likely future, z = mu_c)', async () => {
     const h = walkerHistory('cmu_10_04', 0, n);
     const values: number[] = [];
-    for (const s of [0, 0.5, 1, 2]) {
+    for (const s of [0, 0.5, 1, 2, 6]) {
       const pred = await p.predict(h, { k: 10, seed: 1, controls: { sigma_scale: s } });
       values.push(pred.readouts![0].value);
       if (s === 0) {
@@ -111,8 +111,8 @@ if (served.length) describe('served LCP-VAE model in Node', () => {
   it.each([
     ['a short history', walkerHistory('cmu_10_04', 0, 12), {}, /history has 12 frames; this model needs at least 19/],
     ['NaN in the history', { ...walkerHistory('cmu_10_04', 0, 19), positions: new Float32Array(19 * J * 3).fill(NaN) }, {}, /NaN or infinite values \(first at frame 0\)/],
-    ['sigma scale above 2', walkerHistory('cmu_10_04', 0, 19), { sigma_scale: 2.5 }, /Sigma scale must be between 0 and 2, got 2.5/],
-    ['sigma scale below 0', walkerHistory('cmu_10_04', 0, 19), { sigma_scale: -0.1 }, /Sigma scale must be between 0 and 2, got -0.1/],
+    ['sigma scale above 8', walkerHistory('cmu_10_04', 0, 19), { sigma_scale: 8.5 }, /Sigma scale must be between 0 and 8, got 8.5/],
+    ['sigma scale below 0', walkerHistory('cmu_10_04', 0, 19), { sigma_scale: -0.1 }, /Sigma scale must be between 0 and 8, got -0.1/],
   ])('bad input: %s', async (_, h, controls, message) => {
     await expect(p.predict(h, { k: 10, seed: 0, controls })).rejects.toThrow(PredictError);
     await expect(p.predict(h, { k: 10, seed: 0, controls })).rejects.toThrow(message);

@@ -41,7 +41,9 @@ export async function mountPriorFigure(host: HTMLElement, data: ExplainerData): 
   const histA = select({ id: 'prior-a', label: 'History A', options: opts, value: pick(data.defaultClip(), 0), onChange: () => { void load(); } });
   const histB = select({ id: 'prior-b', label: 'History B', options: opts, value: pick(tests.find((c) => c.action !== tests.find((t) => t.name === data.defaultClip())?.action)?.name ?? '', 1), onChange: () => { void load(); } });
   let scale = 1;
-  const s = slider({ id: 'prior-s', label: 'Sigma scale s', min: 0, max: 2, step: 0.05, value: 1, format: (v) => `s = ${v.toFixed(2)}`,
+  // the predictor's own range (the manifest's control); the figure opens at the paper's s = 1
+  const control = entry.controls.find((c) => c.id === 'sigma_scale');
+  const s = slider({ id: 'prior-s', label: 'Sigma scale s', min: 0, max: control?.max ?? 2, step: 0.05, value: 1, format: (v) => `s = ${v.toFixed(2)}`,
     onInput: (v) => { scale = v; draw(); } });
   f.controls.append(histA.row, histB.row, s.row);
   const setStandard = readout(f.readouts, 'prior-sep-standard', 'Standard prior: distance between A and B, in spreads');
