@@ -36,7 +36,7 @@ class LcpVaeMethod(Method):
         # (Table 4 row 4); a larger s is a labelled variant, a sampling temperature on the CS-VAE's
         # posterior. Chosen on the training people's 2 s windows (in-sample table, K = 10), never on
         # held-out ones: best-of-10 ADE 0.596 / 0.586 / 0.585 m at s = 1 / 1.5 / 2, truth outside every
-        # sample 95% / 81% / 67%, pose spread 5.5 / 8.0 / 10.3 cm: 2 (the control's top).
+        # sample 95% / 81% / 67%, pose spread 5.5 / 8.0 / 10.3 cm: 2, the control's top then (superseded below).
         # The sampling control s (z = mu_c + s*sigma_c*eps; the paper samples at s = 1) served at 6 (was 2),
         # issue 28: the truth sat outside every sample because CS-VAE's posterior is narrow (its Eq. 5 KL ends
         # near 35 nats a window), and sampling draws z = z_c from it. A retrain with free bits on Eq. 6 (0.25

@@ -1,5 +1,7 @@
 // Messages between the benchmark page and its graph-timing worker (web/src/bench/graph-worker.ts).
 
+import type { OptimizationLevel } from '../predictor/ort-runner';
+
 export interface Feed {
   dims: number[];
   data: Float32Array;
@@ -16,7 +18,7 @@ export interface GraphJob {
   warmupMs?: number;
   runs: number;
   /** Session graph optimisation level (default: the site's, predictor/ort-runner.ts SESSION_OPTIMIZATION). */
-  optimization?: 'disabled' | 'basic' | 'extended' | 'all';
+  optimization?: OptimizationLevel;
   /** Also return onnxruntime's per-node profile events (runs are slower then). */
   profile?: boolean;
   /** Return the first run's outputs (to check a variant against the served graph). */

@@ -15,7 +15,8 @@ export const OPTIMIZATION_LEVELS = ['disabled', 'basic', 'extended', 'all'] as c
  *  navigations of ?model=wat-rnn: median 1396 ms at 'all', 1271 ms at 'disabled'; each graph's run
  *  stays within 0-30% of 'all' (make bench, "Attempts on the ratio"; wat-rnn's decoder at K = 10:
  *  7.0 against 6.8 ms). The e2e vectors hold at either level. */
-export const SESSION_OPTIMIZATION: (typeof OPTIMIZATION_LEVELS)[number] = 'disabled';
+export type OptimizationLevel = (typeof OPTIMIZATION_LEVELS)[number];
+export const SESSION_OPTIMIZATION: OptimizationLevel = 'disabled';
 export type { FileLoader };
 export type { GraphTiming };
 
