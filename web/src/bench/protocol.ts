@@ -1,7 +1,5 @@
 // Messages between the benchmark page and its graph-timing worker (web/src/bench/graph-worker.ts).
 
-import type { OptimizationLevel } from '../predictor/ort-runner';
-
 export interface Feed {
   dims: number[];
   data: Float32Array;
@@ -17,8 +15,9 @@ export interface GraphJob {
   /** Keep warming up until this long has passed too (ms). */
   warmupMs?: number;
   runs: number;
-  /** Session graph optimisation level (default: the site's, predictor/ort-runner.ts SESSION_OPTIMIZATION). */
-  optimization?: OptimizationLevel;
+  /** Session graph optimisation level (default: the site's, predictor/ort-runner.ts SESSION_OPTIMIZATION; the
+   *  levels are spelt out here because the bench page's main thread may not import ort-runner, which imports onnxruntime). */
+  optimization?: 'disabled' | 'basic' | 'extended' | 'all';
   /** Also return onnxruntime's per-node profile events (runs are slower then). */
   profile?: boolean;
   /** Return the first run's outputs (to check a variant against the served graph). */
