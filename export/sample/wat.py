@@ -2,7 +2,8 @@
 
 Twin of web/src/predictor/wat.ts. For every action of the sequence, with all K samples in one call:
   1. each sample's last N frames (up to its previous stop frame) -> canonical history;
-  2. prior graph -> mu, log-variance; z = mu + exp(logvar / 2) * eps (float64, rounded to float32);
+  2. prior graph -> mu, log-variance; z = mu + (temperature * exp(logvar / 2)) * eps (float64, rounded to float32;
+     temperature is the served control, 1 = the paper);
   3. decoder graph -> T_max frames; Eq. 8 on the canonical frames gives the sample's stop frame
      (T_max and stopped = false if no window falls below delta);
   4. Eq. 4 over the last L history frames and the first L predicted ones: the transition's smoothness,
@@ -26,14 +27,19 @@ from .request import Prediction, PredictError, Request
 from .rows import run_rows
 
 
-def sample_latent(mu: np.ndarray, logvar: np.ndarray, eps: np.ndarray) -> np.ndarray:
-    """Reparameterisation z = mu + exp(logvar / 2) * eps in float64, rounded to float32 (twin of
-    web/src/sampling/gaussian.ts)."""
+def sample_latent(mu: np.ndarray, logvar: np.ndarray, eps: np.ndarray, temperature: float = 1.0) -> np.ndarray:
+    """Reparameterisation z = mu + (temperature * exp(logvar / 2)) * eps in float64, rounded to float32 (twin
+    of web/src/sampling/gaussian.ts; temperature 1 is the paper's prior sample)."""
     mu, logvar = np.asarray(mu, np.float64), np.asarray(logvar, np.float64)
-    return (mu + np.exp(logvar / 2) * np.asarray(eps, np.float64)).astype(np.float32)
+    return (mu + (float(temperature) * np.exp(logvar / 2)) * np.asarray(eps, np.float64)).astype(np.float32)
 
 
 class WatPredictor(Predictor):
+    def temperature(self, req: Request) -> float:
+        """The prior's temperature (a labelled variant of the paper's z ~ N(mu_p, sigma_p^2); 1 = the paper)."""
+        spec = next((c for c in self.entry["controls"] if c["id"] == "temperature"), None)
+        return float(req.controls.get("temperature", spec["default"])) if spec else 1.0
+
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         p = self.params
         n, t_max, d = p["history_frames"], p["future_frames"], p["latent_size"]
@@ -44,6 +50,7 @@ class WatPredictor(Predictor):
         if len(req.actions) > spec["max_length"]:
             raise PredictError(f"the action sequence has {len(req.actions)} actions; at most {spec['max_length']} are allowed")
         k = req.k
+        temperature = self.temperature(req)
         draws = streams(req.seed, k)
         seqs = [history[-n:].astype(np.float32)] * k          # world frame, grows by each segment
         parts = [[] for _ in range(k)]
@@ -56,7 +63,7 @@ class WatPredictor(Predictor):
             onehot = np.zeros((k, len(order)), np.float32)
             onehot[:, order.index(action)] = 1
             prior = run_rows(self.runner, "prior", {"history": canon, "action": onehot})
-            z = sample_latent(prior["prior_mean"], prior["prior_logvar"], row_normals(draws, k, d))
+            z = sample_latent(prior["prior_mean"], prior["prior_logvar"], row_normals(draws, k, d), temperature)
             future = run_rows(self.runner, "decoder", {"z": z, "history": canon, "action": onehot})["future"]
             for i in range(k):
                 # Eq. 8 and Eq. 4 act on root-relative poses: a walk that keeps walking is not static.

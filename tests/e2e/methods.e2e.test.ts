@@ -1,5 +1,6 @@
 // LCP-VAE and Keyposes in a real Chromium: K = 10 futures from a history of the test split, drawn
-// on stage, differing from each other (LCP: positions; Keyposes: label sequences); controls cannot
+// on stage, differing from each other (LCP: positions; Keyposes: label sequences); WAT's prior temperature
+// and LCP-VAE's sigma scale at 0 collapse the K futures to one; controls cannot
 // leave their range, and a link that asks for it is named. Each number the method adds under the futures
 // (LCP-VAE's diversity, Keyposes' counts and pace) explains itself on hover and focus.
 import { afterAll, beforeAll, describe, expect, inject, it } from 'vitest';
@@ -55,7 +56,7 @@ async function predictTen(page: Page, model: string): Promise<void> {
   expect(d.predictionK).toBe('10');
 }
 
-describe('LCP-VAE and Keyposes in the browser', () => {
+describe('LCP-VAE, WAT and Keyposes in the browser', () => {
   let session: BrowserSession;
   let page: Page;
 
@@ -82,16 +83,29 @@ describe('LCP-VAE and Keyposes in the browser', () => {
     expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
-  it('LCP-VAE at sigma scale 0 decodes one future K times; the slider cannot leave its range', async () => {
-    await page.locator('#control-sigma_scale').fill('0');
+  /** The spread control at 0 collapses the K futures to one; past its manifest maximum the slider clamps. */
+  async function collapsesAtZero(control: string, max: number): Promise<void> {
+    const slider = page.locator(`#control-${control}`);
+    const served = await slider.inputValue();
+    await slider.fill('0');
     await waiting(page);
     await page.locator('#predict').click();
     await predicted(page);
     expect(await spread(page)).toBeLessThan(1e-6);
-    // the manifest's range for the control is 0-8 (export/methods/lcp_vae.py)
-    await page.locator('#control-sigma_scale').fill('9');
-    expect(await page.locator('#control-sigma_scale').inputValue()).toBe('8');
-    await page.locator('#control-sigma_scale').fill('1');
+    await slider.fill(String(max + 1));
+    expect(await slider.inputValue()).toBe(String(max));
+    await slider.fill(served);
+  }
+
+  it('LCP-VAE at sigma scale 0 decodes one future K times; the slider cannot leave its range', async () => {
+    await collapsesAtZero('sigma_scale', 8);      // the manifest's range, 0-8 (export/methods/lcp_vae.py)
+  });
+
+  it('WAT at prior temperature 0 decodes the prior mean K times; the slider cannot leave its range', async () => {
+    await predictTen(page, 'wat-rnn');
+    expect(await spread(page)).toBeGreaterThan(0.01);
+    await collapsesAtZero('temperature', 4);      // the manifest's range, 0-4 (export/methods/wat.py)
+    expect(session.problems).toEqual(NO_PROBLEMS);
   });
 
   it('Keyposes draws K = 10 futures with differing keypose label sequences', async () => {

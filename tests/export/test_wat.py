@@ -343,13 +343,14 @@ def test_stops_follow_eq8_on_the_decoder_output_and_recursion_uses_the_last_n_fr
                                                                      plant_feet=False))
     # Redo both steps by hand for sample 1 with the same draws (one stream per sample, export/rng.py).
     runner, draws = GraphRunner(entry, out), streams(5, 2)
+    temperature = next(c["default"] for c in entry["controls"] if c["id"] == "temperature")   # the config's
     onehot = lambda a: np.eye(len(p["actions"]), dtype=np.float32)[[p["actions"].index(a)] * 2]
     recent = np.stack([history.astype(np.float32)] * 2)
     start = 0
     for step, action in enumerate(["punch", "walk"]):
         canon = np.stack([to_canonical(h)[0] for h in recent])
         prior = runner.run("prior", {"history": canon, "action": onehot(action)})
-        z = sample_latent(prior["prior_mean"], prior["prior_logvar"], row_normals(draws, 2, p["latent_size"]))
+        z = sample_latent(prior["prior_mean"], prior["prior_logvar"], row_normals(draws, 2, p["latent_size"]), temperature)
         future = runner.run("decoder", {"z": z, "history": canon, "action": onehot(action)})["future"][1]
         # Eq. 8 and Eq. 4 on root-relative poses (export/ops/facing.py)
         stop = first_stop(variance_curve(root_relative(future), p["stop"]["q"]), p["stop"]["delta"],
@@ -374,7 +375,27 @@ def test_seeds_reproduce_and_differ(tiny, clips):
     assert np.abs(a.futures[0, :10] - a.futures[1, :10]).max() > 0       # samples differ
 
 
+def test_the_prior_temperature_scales_each_sample_about_the_prior_mean(tiny, clips):
+    """z = mu + (t * sigma) * eps (the served variant; t = 1 is the paper's draw): t = 0 decodes the prior's
+    mean for every sample, and each sample's latent moves linearly with t along its own eps."""
+    _, _, entry, out = tiny
+    predictor = load_predictor(entry["id"], out)
+    spec = next(c for c in entry["controls"] if c["id"] == "temperature")
+    assert spec["default"] == load_config("wat_rnn.json")["sampling"]["temperature"] and spec["min"] == 0
+    mean = predictor.predict(_history(clips), Request(k=4, seed=9, actions=["walk"], controls={"temperature": 0}))
+    assert all(np.array_equal(mean.futures[0], f) for f in mean.futures[1:])
+    mu, logvar, eps = np.array([[0.5, -1.0]]), np.array([[0.2, -0.6]]), np.array([[1.5, -0.25]])
+    for t in (0.0, 1.0, 2.5):
+        np.testing.assert_allclose(sample_latent(mu, logvar, eps, t), mu + t * np.exp(logvar / 2) * eps, rtol=1e-6)
+    wide = [predictor.predict(_history(clips), Request(k=8, seed=9, actions=["walk"], controls={"temperature": t}))
+            for t in (0.5, 2.0)]
+    spread = [np.linalg.norm(w.futures[:, 5] - w.futures[:, 5].mean(0), axis=-1).mean() for w in wide]
+    assert spread[1] > spread[0]
+
+
 @pytest.mark.parametrize("history_frames, req, message", [
+    (10, Request(k=2, actions=["walk"], controls={"temperature": 4.5}), "Prior temperature must be between 0 and 4, got 4.5"),
+    (10, Request(k=2, actions=["walk"], controls={"temperature": -0.1}), "Prior temperature must be between 0 and 4"),
     (10, Request(k=2, actions=["moonwalk"]), "unknown action 'moonwalk'"),
     (10, Request(k=0, actions=["walk"]), "K must be an integer from 1 to 50, got 0"),
     (10, Request(k=51, actions=["walk"]), "K must be an integer from 1 to 50, got 51"),

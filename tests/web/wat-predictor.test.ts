@@ -64,7 +64,20 @@ describe('WAT predictor (TypeScript, served model)', () => {
     });
   }
 
+  it('the prior temperature 0 decodes the prior mean for every sample, and the default is the manifest\'s', async () => {
+    const spec = entry.controls.find((c) => c.id === 'temperature')!;
+    expect(spec.min).toBe(0);
+    const mean = await p.predict(history(10), { k: 3, seed: 4, actions: ['walk'], controls: { temperature: 0 } });
+    const n = mean.frames * J * 3;
+    for (let i = 1; i < 3; i++) expect(mean.futures.subarray(i * n, (i + 1) * n)).toEqual(mean.futures.subarray(0, n));
+    const byDefault = await p.predict(history(10), { k: 3, seed: 4, actions: ['walk'] });
+    const explicit = await p.predict(history(10), { k: 3, seed: 4, actions: ['walk'], controls: { temperature: spec.default as number } });
+    expect(explicit.futures).toEqual(byDefault.futures);
+    expect(byDefault.futures).not.toEqual(mean.futures);
+  });
+
   it.each([
+    [history(10), { k: 2, seed: 0, actions: ['walk'], controls: { temperature: 4.5 } }, /Prior temperature must be between 0 and 4, got 4.5/],
     [history(10), { k: 2, seed: 0, actions: ['moonwalk'] }, /unknown action 'moonwalk'/],
     [history(10), { k: 0, seed: 0, actions: ['walk'] }, /K must be an integer from 1 to 50, got 0/],
     [history(10), { k: 51, seed: 0, actions: ['walk'] }, /K must be an integer from 1 to 50, got 51/],

@@ -8,7 +8,7 @@
 import type { ModelEntry } from '../contract/types';
 import { window as clipWindow } from '../motion/clip';
 import { rootRelative, toCanonical } from '../predictor/canonical';
-import type { WatParams } from '../predictor/wat';
+import { priorTemperature, type WatParams } from '../predictor/wat';
 import { streams } from '../rng/prng';
 import { sampleGaussian } from '../sampling/gaussian';
 import { firstStop, varianceCurve } from '../sampling/variance-stop';
@@ -148,7 +148,7 @@ async function watCurves(data: ExplainerData, wat: ModelEntry, action: string, s
   const runner = data.graphs().runner(wat.id);
   const feeds = { history: { data: history, dims: [K, n, j, 3] }, action: { data: onehot, dims: [K, p.actions.length] } };
   const prior = await runner.run('prior', feeds);
-  const z = sampleGaussian(streams(seed, K), prior.prior_mean.data, prior.prior_logvar.data, K, p.latent_size);
+  const z = sampleGaussian(streams(seed, K), prior.prior_mean.data, prior.prior_logvar.data, K, p.latent_size, priorTemperature(wat));
   const out = await runner.run('decoder', { ...feeds, z: { data: z, dims: [K, p.latent_size] } });
   const len = p.future_frames * stride;
   // Eq. 8 on root-relative poses, as the predictor computes it

@@ -1,7 +1,7 @@
 // Predictor for WAT, twin of export/sample/wat.py: K samples per action, each cut at its own stop
 // frame, the actions one after another. For every action, with all K samples in one call:
 //   1. each sample's last N frames (up to its previous stop frame) -> canonical history;
-//   2. prior graph -> mu, log-variance; z = mu + exp(logvar / 2) * eps (float64, rounded to float32);
+//   2. prior graph -> mu, log-variance; z = mu + (temperature * exp(logvar / 2)) * eps (float64, rounded to float32);
 //   3. decoder graph -> T_max frames; Eq. 8 on the canonical frames gives the sample's stop frame
 //      (T_max and stopped = false if no window falls below delta);
 //   4. Eq. 4 over the last L history frames and the first L predicted ones, flagged above the threshold.
@@ -13,6 +13,7 @@ import { smoothness } from '../sampling/dct-smoothness';
 import { sampleGaussian } from '../sampling/gaussian';
 import { firstStop, varianceCurve } from '../sampling/variance-stop';
 import { fromCanonical, rootRelative, toCanonical, type Placement } from './canonical';
+import type { ModelEntry } from '../contract/types';
 import { checkHistory, checkRequest } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor,
@@ -33,6 +34,14 @@ function concat(a: Float32Array, b: Float32Array): Float32Array {
   out.set(a);
   out.set(b, a.length);
   return out;
+}
+
+/** The prior's temperature t, z = mu_p + t * sigma_p * eps: the request's, else the manifest's default (a
+ *  labelled variant; t = 1 is the paper's draw, export/methods/wat.py says why more is served). Twin of
+ *  WatPredictor.temperature in export/sample/wat.py. */
+export function priorTemperature(entry: ModelEntry, controls?: PredictRequest['controls']): number {
+  const spec = entry.controls.find((c) => c.id === 'temperature');
+  return spec ? Number(controls?.temperature ?? spec.default) : 1;
 }
 
 export class WatPredictor implements Predictor {
@@ -59,6 +68,7 @@ export class WatPredictor implements Predictor {
       throw new PredictError(`the action sequence has ${actions.length} actions; at most ${maxLength} are allowed`);
     }
     const k = req.k;
+    const temperature = priorTemperature(entry, req.controls);
     const stride = j * 3;
     const histLen = n * stride;
     const draws = streams(req.seed, k);
@@ -83,7 +93,7 @@ export class WatPredictor implements Predictor {
       const historyT = { data: canon, dims: [k, n, j, 3] };
       const actionT = { data: onehot, dims: [k, p.actions.length] };
       const prior = await runner.run('prior', { history: historyT, action: actionT });
-      const z = sampleGaussian(draws, prior.prior_mean.data, prior.prior_logvar.data, k, d);
+      const z = sampleGaussian(draws, prior.prior_mean.data, prior.prior_logvar.data, k, d, temperature);
       if (isCancelled()) throw new Superseded();
       const out = await runner.run('decoder', { z: { data: z, dims: [k, d] }, history: historyT, action: actionT });
       const futLen = tMax * stride;
