@@ -901,13 +901,11 @@ def evaluate(clips: list[Clip], cfg: dict, rows: list[Row] = ROWS, models_dir: P
     claims = evaluate_claims(by_table, store, tabs, recognition)
     copying = copying_checks(by_table, store, tabs)
     served = served_configs()
+    ids = {c: load_config(CONFIGS_DIR / c).get("id") for c in served}
     first_of = {}      # the model as served: the served config's row named by its id (else its first row)
     for r in rows:
-        if r.kind == "model" and r.config in served:
-            if r.id == load_config(CONFIGS_DIR / r.config).get("id"):
-                first_of[r.config] = r.id
-            elif r.config not in first_of:
-                first_of[r.config] = r.id
+        if r.kind == "model" and r.config in served and (r.id == ids[r.config] or r.config not in first_of):
+            first_of[r.config] = r.id
     learned = [rid for config, rid in first_of.items() if method_for(load_config(CONFIGS_DIR / config)).trainable]
     doc = {"format": "motion-futures/results", "version": 2,
            "columns": {c: {"label": v.label, "unit": v.unit, "better": v.better} for c, v in COLUMNS.items()},

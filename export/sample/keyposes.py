@@ -26,7 +26,7 @@ from ..ops.proximity import face_forward, proximity, sample_index, softmax
 from ..paths import MODELS_DIR
 from ..rng import streams
 from .predictor import Predictor
-from .request import PredictError, Prediction, Request, horizon_frames
+from .request import PredictError, Prediction, Request, control_value, horizon_frames
 from .rows import run_rows
 
 
@@ -71,10 +71,6 @@ class KeyposesPredictor(Predictor):
     def root_velocity(self) -> np.ndarray:
         return self._centres_file()[1]
 
-    def _control(self, req: Request, cid: str):
-        spec = next(c for c in self.entry["controls"] if c["id"] == cid)
-        return req.controls.get(cid, spec["default"])
-
     def observe(self, history: np.ndarray) -> dict:
         """The history's keyposes: frames, labels after pruning, and the KP-GRU's inputs."""
         p, k = self.params, self.params["keyposes"]
@@ -98,10 +94,10 @@ class KeyposesPredictor(Predictor):
 
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         p = self.params
-        temperature = float(self._control(req, "temperature"))
+        temperature = float(control_value(req, self.entry, "temperature"))
         if not temperature > 0:
             raise PredictError(f"the temperature must be above 0, got {temperature}")
-        refine = self._control(req, "refine")
+        refine = control_value(req, self.entry, "refine")
         if not isinstance(refine, bool):
             raise PredictError(f"Refine must be true or false, got {refine!r}")
         horizon = horizon_frames(req, self.entry, self.manifest["fps"])

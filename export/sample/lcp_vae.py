@@ -21,7 +21,7 @@ from ..ops.facing import root_relative, split_root
 from ..rng import Prng, row_normals, streams
 from .canonical import from_canonical, to_canonical
 from .predictor import Predictor
-from .request import Prediction, PredictError, Request, horizon_frames
+from .request import Prediction, PredictError, Request, control_value, horizon_frames
 from .rows import run_rows
 
 
@@ -71,14 +71,10 @@ def diversity(futures: np.ndarray) -> float:
 
 
 class LcpVaePredictor(Predictor):
-    def sigma_scale(self, req: Request) -> float:
-        spec = next(c for c in self.entry["controls"] if c["id"] == "sigma_scale")
-        return float(req.controls.get("sigma_scale", spec["default"]))
-
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         n, step = self.params["history_frames"], self.params["future_frames"]
         horizon = horizon_frames(req, self.entry, self.manifest["fps"])
-        k, scale = req.k, self.sigma_scale(req)
+        k, scale = req.k, float(control_value(req, self.entry, "sigma_scale", 1.0))
         draws = streams(req.seed, k)
         c_spec = self.params.get("decoder_condition")
         # Every sample starts from the same history: the first condition call runs once (batch 1).

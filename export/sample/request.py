@@ -85,6 +85,12 @@ def check_history(history: np.ndarray, needed: int, joints: int) -> np.ndarray:
 REQUEST_FIELDS = ("k", "actions", "horizon")
 
 
+def control_value(req: Request, entry: dict, cid: str, absent=None):
+    """A control's value: the request's, else the manifest's default, else `absent` (a model without it)."""
+    spec = next((c for c in entry["controls"] if c["id"] == cid), None)
+    return req.controls.get(cid, spec["default"]) if spec else absent
+
+
 def horizon_frames(req: Request, entry: dict, fps: float) -> int:
     """Frames to predict: the request's, else the `horizon` control's default (seconds), else one call."""
     if req.horizon_frames is not None:

@@ -23,7 +23,7 @@ from ..ops.variance_stop import first_stop, variance_curve
 from ..rng import row_normals, streams
 from .canonical import from_canonical, to_canonical
 from .predictor import Predictor
-from .request import Prediction, PredictError, Request
+from .request import Prediction, PredictError, Request, control_value
 from .rows import run_rows
 
 
@@ -35,11 +35,6 @@ def sample_latent(mu: np.ndarray, logvar: np.ndarray, eps: np.ndarray, temperatu
 
 
 class WatPredictor(Predictor):
-    def temperature(self, req: Request) -> float:
-        """The prior's temperature (a labelled variant of the paper's z ~ N(mu_p, sigma_p^2); 1 = the paper)."""
-        spec = next((c for c in self.entry["controls"] if c["id"] == "temperature"), None)
-        return float(req.controls.get("temperature", spec["default"])) if spec else 1.0
-
     def _predict(self, history: np.ndarray, req: Request) -> Prediction:
         p = self.params
         n, t_max, d = p["history_frames"], p["future_frames"], p["latent_size"]
@@ -50,7 +45,7 @@ class WatPredictor(Predictor):
         if len(req.actions) > spec["max_length"]:
             raise PredictError(f"the action sequence has {len(req.actions)} actions; at most {spec['max_length']} are allowed")
         k = req.k
-        temperature = self.temperature(req)
+        temperature = float(control_value(req, self.entry, "temperature", 1.0))   # 1 = the paper's draw
         draws = streams(req.seed, k)
         seqs = [history[-n:].astype(np.float32)] * k          # world frame, grows by each segment
         parts = [[] for _ in range(k)]

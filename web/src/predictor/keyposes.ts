@@ -14,7 +14,7 @@ import { sampleIndex } from '../sampling/temperature';
 import { continueHistory } from '../sampling/seam';
 import { keepBones } from '../motion/bones';
 import { canonicalise, place, rootRelative, splitRoot } from './canonical';
-import { checkHistory, checkRequest, horizonFrames } from './request';
+import { checkHistory, checkRequest, controlValue, horizonFrames } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor, type PredictorContext, type SampleInfo, type Tensor,
 } from './types';
@@ -121,9 +121,9 @@ export class KeyposesPredictor implements Predictor {
     const s = j * 3;
     checkHistory(history, p.history_frames, j);
     checkRequest(req, entry, this.ctx.actions, this.ctx.fps);
-    const temperature = Number(this.control(req, 'temperature'));
+    const temperature = Number(controlValue(req, entry, 'temperature'));
     if (!(temperature > 0)) throw new PredictError(`the temperature must be above 0, got ${temperature}`);
-    const refine = this.control(req, 'refine');
+    const refine = controlValue(req, entry, 'refine');
     if (typeof refine !== 'boolean') throw new PredictError(`Refine must be true or false, got ${refine}`);
     const horizon = horizonFrames(req, entry, this.ctx.fps);
     const r = p.refine_frames;
@@ -267,10 +267,6 @@ export class KeyposesPredictor implements Predictor {
     };
   }
 
-  private control(req: PredictRequest, id: string): unknown {
-    const spec = this.ctx.entry.controls.find((c) => c.id === id);
-    return req.controls?.[id] ?? spec?.default;
-  }
 }
 
 /** A batch-1 row repeated k times. */

@@ -14,7 +14,7 @@ import { rowNormals, streams, type Prng } from '../rng/prng';
 import { diversity } from '../sampling/diversity';
 import { shiftScale } from '../sampling/gaussian';
 import { fromCanonical, toCanonical, type Placement } from './canonical';
-import { checkHistory, checkRequest, horizonFrames } from './request';
+import { checkHistory, checkRequest, controlValue, horizonFrames } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor,
   type PredictorContext, type Tensor,
@@ -75,8 +75,7 @@ export class LcpVaePredictor implements Predictor {
     checkRequest(req, entry, this.ctx.actions, this.ctx.fps);
     const horizon = horizonFrames(req, entry, this.ctx.fps);
     const k = req.k;
-    const spec = entry.controls.find((c) => c.id === 'sigma_scale');
-    const scale = Number(req.controls?.sigma_scale ?? spec?.default ?? 1);
+    const scale = Number(controlValue(req, entry, 'sigma_scale', 1));
     const draws = streams(req.seed, k);
     const stride = j * 3;
     const histLen = n * stride;

@@ -20,6 +20,12 @@ export function checkHistory(h: History, needed: number, joints: number): void {
 /** Controls that are fields of the request rather than entries of `controls`. */
 export const REQUEST_FIELDS = ['k', 'actions', 'horizon'];
 
+/** A control's value: the request's, else the manifest's default, else `absent` (a model without it). */
+export function controlValue(req: Pick<PredictRequest, 'controls'>, entry: ModelEntry, id: string, absent?: unknown): unknown {
+  const spec = entry.controls.find((c) => c.id === id);
+  return spec ? (req.controls?.[id] ?? spec.default) : absent;
+}
+
 /** Frames to predict: the request's, else the `horizon` control's default (seconds), else one call. */
 export function horizonFrames(req: PredictRequest, entry: ModelEntry, fps: number): number {
   if (req.horizonFrames !== undefined) return req.horizonFrames;

@@ -14,7 +14,7 @@ import { sampleGaussian } from '../sampling/gaussian';
 import { firstStop, varianceCurve } from '../sampling/variance-stop';
 import { fromCanonical, rootRelative, toCanonical, type Placement } from './canonical';
 import type { ModelEntry } from '../contract/types';
-import { checkHistory, checkRequest } from './request';
+import { checkHistory, checkRequest, controlValue } from './request';
 import {
   PredictError, Superseded, type History, type Prediction, type PredictRequest, type Predictor,
   type PredictorContext, type SampleInfo, type Segment,
@@ -36,12 +36,10 @@ function concat(a: Float32Array, b: Float32Array): Float32Array {
   return out;
 }
 
-/** The prior's temperature t, z = mu_p + t * sigma_p * eps: the request's, else the manifest's default (a
- *  labelled variant; t = 1 is the paper's draw, export/methods/wat.py says why more is served). Twin of
- *  WatPredictor.temperature in export/sample/wat.py. */
+/** The prior's temperature t, z = mu_p + t * sigma_p * eps (a labelled variant; t = 1 is the paper's draw,
+ *  export/methods/wat.py says why more is served). */
 export function priorTemperature(entry: ModelEntry, controls?: PredictRequest['controls']): number {
-  const spec = entry.controls.find((c) => c.id === 'temperature');
-  return spec ? Number(controls?.temperature ?? spec.default) : 1;
+  return Number(controlValue({ controls }, entry, 'temperature', 1));
 }
 
 export class WatPredictor implements Predictor {
