@@ -129,6 +129,12 @@ class WatMethod(Method):
         # moves (jumps lost their timing: the jump group's out ADE/ZV 0.69 -> 0.92); 5 keeps the ADE and some speed.
         # A decoder of 128 (with root_input step; not served): in 0.576 but out 0.909: more weights fit the training
         # people, not new ones.
+        # Tried, not kept (stop 43): best-of-many on the prior (Bhattacharyya et al., CVPR 2018), Eq. 7 on the
+        # closest of 3 futures decoded from z ~ p(z | x, a), weight 100, beside the served terms (9000 steps).
+        # In-sample, K = 10, 2 s, at prior temperature 1 / 2: best-of-10 ADE / zero-velocity's 0.595 / 0.603
+        # (served 0.659 / 0.747), joint speed / truth's in the 2nd second 0.35 / 0.37 (served 0.57 / 0.55),
+        # truth outside 82 / 51% (56 / 16%), pose spread 6.2 / 11.9 cm (14.4 / 22.9): the prior narrowed onto
+        # the one future closest on average, which is the frozen mean this pass works against.
         # model.history_hidden 48 -> 40 (configs/wat_rnn.json): the history's steps widen the history GRU's input
         # (54 -> 108), and both graphs carry that GRU, so at 48 the served model was 452,853 bytes gzipped, over
         # its 0.45 MB cap (export/bench/native.py); 40 is the served size (its numbers are in docs/RESULTS.md).
