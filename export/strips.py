@@ -176,5 +176,8 @@ def run(models: list[str] | None = None, out_dir: Path = OUT_DIR) -> dict:
         summary[entry["id"]] = {c.name: {k: v for k, v in res.items() if k not in ("history", "truth", "futures")}
                                 for c, res in results}
         print(f"wrote {out_dir / (entry['id'] + '.png')}")
-    (out_dir / "strips.json").write_text(json.dumps(summary, indent=1) + "\n")
+    # `--model` redraws some models: the others' entries stay, as their pictures do.
+    path = out_dir / "strips.json"
+    kept = json.loads(path.read_text()) if models is not None and path.exists() else {}
+    path.write_text(json.dumps({**kept, **summary}, indent=1) + "\n")
     return summary

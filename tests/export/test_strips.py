@@ -17,6 +17,13 @@ def test_standing_still_reads_zero_speed_beside_a_walking_truth(tmp_path):
     assert json.loads((tmp_path / "strips.json").read_text()) == summary
 
 
+def test_redrawing_one_model_keeps_the_others_entries(tmp_path):
+    (tmp_path / "strips.json").write_text(json.dumps({"wat-rnn": {"walk": {"refused": "x"}}}))
+    summary = strips.run(["zero-velocity"], tmp_path)
+    written = json.loads((tmp_path / "strips.json").read_text())
+    assert written == {"wat-rnn": {"walk": {"refused": "x"}}, **summary} and "zero-velocity" in summary
+
+
 def test_a_refused_history_is_drawn_with_its_reason(tmp_path):
     class Refuses:
         def predict(self, history, req):
