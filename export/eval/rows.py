@@ -20,6 +20,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..config import load_config
+
 
 @dataclass(frozen=True)
 class Row:
@@ -43,7 +45,7 @@ LONG = "heldout_5s"
 TRANSITIONS = "transitions"
 IN_SAMPLE = "in_sample"
 KP_TEMPERATURES = (0.1, 0.3, 0.5, 1.0)
-KP_SERVED = 1.2        # configs/keyposes.json sampling.temperature (export/methods/keyposes.py says why)
+KP_SERVED = load_config("keyposes.json")["sampling"]["temperature"]   # export/methods/keyposes.py says why
 SERVED_ONLY = (*HELD_OUT, LONG, IN_SAMPLE)
 
 ROWS: list[Row] = [
@@ -128,7 +130,8 @@ ROWS: list[Row] = [
         note="evaluation variant: the history's keyposes by the authors' code's rule (a segment splits until its "
              "largest error is below the threshold), the served model otherwise"),
     Row("keyposes-no-shape", f"Keyposes w/o shape terms (T = {KP_SERVED}, refined)",
-        config="ablations/keyposes_no_shape.json", controls={"temperature": KP_SERVED, "refine": True}, group="keyposes", tables=(*HELD_OUT, LONG)),
+        config="ablations/keyposes_no_shape.json", controls={"temperature": KP_SERVED, "refine": True},
+        group="keyposes", tables=(*HELD_OUT, LONG)),
     Row("keyposes-32-clusters", "Keyposes, 32 clusters (T = 0.3, linear)", config="ablations/keyposes_32_clusters.json",
         controls={"temperature": 0.3, "refine": False}, group="keyposes", tables=(LONG,)),
     Row("keyposes-noise-1x", "Keyposes, lighter label noise (T = 0.3, linear)",
