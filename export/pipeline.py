@@ -11,7 +11,7 @@ from .data.build import build as build_clips, written_by
 from .data.clip import Clip
 from .data.sources import FPS, MotionSource, default_source
 from .data.windows import windows
-from .manifest import manifest_document, write_manifest
+from .manifest import manifest_document, read_manifest, write_manifest
 from .methods import method_for
 from .methods.base import Method
 from .onnx.export import write as write_graph
@@ -88,7 +88,7 @@ def build_models(configs: list[tuple[str, dict]], source: MotionSource | None = 
     actions = sorted({c.action for c in clips})
     previous = {}
     if only and (out_dir / "manifest.json").exists():
-        previous = {m["id"]: m for m in json.loads((out_dir / "manifest.json").read_text())["models"]}
+        previous = {m["id"]: m for m in read_manifest(out_dir / "manifest.json")["models"]}
     entries = []
     for name, cfg in configs:
         if only and cfg["id"] not in only and cfg["id"] in previous:

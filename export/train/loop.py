@@ -90,7 +90,7 @@ def fit(method: Method, model: nn.Module, data: TrainingData, tc: TrainConfig,
     if resume and ckpt and ckpt.exists():
         state = torch.load(ckpt, weights_only=False)
         # A checkpoint continues only the run it was saved from: another config would be a different model.
-        if "config" in state and state["config"] != _config_key(method.cfg):
+        if "config" in state and _trained_part(json.loads(state["config"])) != _trained_part(method.cfg):
             raise ValueError(f"{ckpt} was saved by another config than {method.cfg['id']}'s: delete it or train "
                              "without resuming")
         model.load_state_dict(state["model"])
@@ -123,6 +123,15 @@ def fit(method: Method, model: nn.Module, data: TrainingData, tc: TrainConfig,
 
 def _config_key(cfg: dict) -> str:
     return json.dumps(cfg, sort_keys=True)
+
+
+# What training never reads: the sampling defaults (a temperature, a sigma scale) and the words. A model
+# re-served at another temperature is exported from its checkpoint, not trained again for 30-50 minutes.
+_NOT_TRAINED = ("sampling", "label", "description")
+
+
+def _trained_part(cfg: dict) -> dict:
+    return {k: v for k, v in cfg.items() if k not in _NOT_TRAINED}
 
 
 def _save(path: Path, model, optim, sched, step: int, config: str) -> None:

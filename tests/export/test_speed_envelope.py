@@ -72,11 +72,16 @@ def test_every_model_in_the_manifest_gets_the_same_speed_envelope(envs, tmp_path
                for e in manifest["models"]]
     assert {json.dumps(e["params"]["envelope"]["tempo_poses"]) for e in entries}.__len__() == 2
     doc = manifest_document(entries, manifest["actions"], manifest["data_hash"])
-    shared = {json.dumps({q: m["params"]["envelope"][q] for q in (*SHARED, "tempo_poses")}) for m in doc["models"]}
+    # stored once: no model's envelope in the file carries a shared quantity or tempo's poses
+    assert all(not set(m["params"]["envelope"]) & {*SHARED, "tempo_poses"} for m in doc["models"])
+    write_manifest(doc, tmp_path / "manifest.json")
+    assert json.loads((tmp_path / "manifest.json").read_text()) == json.loads(json.dumps(doc))
+    read = read_manifest(tmp_path / "manifest.json")   # what every model uses: the shared part put back
+    assert "speed_envelope" not in read
+    shared = {json.dumps({q: m["params"]["envelope"][q] for q in (*SHARED, "tempo_poses")}) for m in read["models"]}
     assert len(shared) == 1
     shortest = min(entries, key=lambda e: e["params"]["history_frames"])["params"]["envelope"]
-    assert all(doc["models"][0]["params"]["envelope"][q] == shortest[q] for q in SHARED)
-    for m, e in zip(doc["models"], entries):      # the other quantities stay the model's own
-        assert m["params"]["envelope"]["root_height"] == e["params"]["envelope"]["root_height"]
-    write_manifest(doc, tmp_path / "manifest.json")
-    assert read_manifest(tmp_path / "manifest.json") == json.loads(json.dumps(doc))
+    assert all(read["models"][0]["params"]["envelope"][q] == pytest.approx(shortest[q]) for q in SHARED)
+    assert read["models"][0]["params"]["envelope"]["tempo_poses"] == json.loads(json.dumps(shortest["tempo_poses"]))
+    for m, e in zip(read["models"], entries):      # the other quantities stay the model's own
+        assert m["params"]["envelope"]["root_height"] == pytest.approx(e["params"]["envelope"]["root_height"])

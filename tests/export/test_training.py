@@ -49,6 +49,12 @@ def test_a_finished_checkpoint_resumes_to_the_same_model_and_another_config_is_r
         assert torch.equal(a, b), k
     with pytest.raises(ValueError, match="another config"):
         train(override(tiny_cfg(), **{"train.lr": 0.5}), cl, tmp_path / "run", resume=True, progress=False)
+    # what training never reads (the sampling defaults, the words) resumes: the same weights, not retrained
+    cfg = override(tiny_cfg(), description="served at another temperature")
+    cfg["sampling"] = {"temperature": 1.75}
+    _, resampled = train(cfg, cl, tmp_path / "run", resume=True, progress=False)
+    for (k, a), b in zip(full.state_dict().items(), resampled.state_dict().values()):
+        assert torch.equal(a, b), k
 
 
 def test_onnx_matches_torch_and_the_check_can_fail(clips):

@@ -50,4 +50,23 @@ describe('contract validation in TypeScript', () => {
     expect(() => validate(manifest, 'manifest', 'models/manifest.json'))
       .toThrow(/models\/manifest\.json: field models\/0\/params\/future_frames: is missing/);
   });
+
+  it('the served manifest stores the shared speed envelope once, and every model reads it back', () => {
+    const text = readFileSync(new URL('../../public/models/manifest.json', import.meta.url), 'utf8');
+    const raw = JSON.parse(text);
+    const shared = raw.speed_envelope as Record<string, unknown>;
+    expect(Object.keys(shared)).toContain('tempo_poses');
+    for (const m of raw.models) expect(Object.keys(m.params.envelope ?? {})).not.toContain('tempo_poses');
+    const doc = validate(parseJson(text, 'manifest.json'), 'manifest', 'manifest.json');
+    expect('speed_envelope' in doc).toBe(false);
+    const withEnv = doc.models.filter((m) => 'envelope' in m.params);
+    expect(withEnv.length).toBe(raw.models.length);
+    for (const m of withEnv) {
+      const env = (m.params as { envelope: Record<string, unknown> }).envelope;
+      for (const [q, v] of Object.entries(shared)) expect(env[q]).toEqual(v);
+      // the model's own quantities are kept beside the shared ones
+      const own = raw.models.find((r: { id: string }) => r.id === m.id).params.envelope;
+      for (const [q, v] of Object.entries(own)) expect(env[q]).toEqual(v);
+    }
+  });
 });

@@ -113,5 +113,8 @@ export interface Manifest {
   skeleton: Skeleton;
   actions: string[];
   data_hash: string;
+  /** The speed quantities and tempo_poses every model's envelope shares, stored once in the file;
+   *  validate() puts them back into each model's params.envelope and drops this field. */
+  speed_envelope?: Record<string, unknown>;
   models: ModelEntry[];
 }

@@ -84,7 +84,21 @@ export function validate<S extends SchemaName>(doc: unknown, schema: S, where: s
   const typed = doc as Docs[S];
   checkSkeleton((typed as { skeleton: Skeleton }).skeleton, where);
   if (schema === 'clip') checkClip(typed as ClipDoc, where);
+  if (schema === 'manifest') return expandSpeedEnvelope(typed as Manifest) as Docs[S];
   return typed;
+}
+
+/** The manifest as its models use it (twin of expand_speed_envelope in export/manifest.py): the file stores
+ *  the speed envelope every model shares once, at its top level; each model's envelope gets it back. */
+export function expandSpeedEnvelope(doc: Manifest): Manifest {
+  const shared = doc.speed_envelope;
+  if (!shared) return doc;
+  const { speed_envelope: _, ...rest } = doc;
+  const models = doc.models.map((m) => {
+    const env = (m.params as { envelope?: Record<string, unknown> }).envelope;
+    return env ? { ...m, params: { ...m.params, envelope: { ...env, ...shared } } } : m;
+  });
+  return { ...rest, models };
 }
 
 /** Parse JSON text; NaN, null positions and syntax errors become a ContractError naming the file. */
