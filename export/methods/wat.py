@@ -82,10 +82,10 @@ class WatMethod(Method):
         # 21.0; 2 0.747, 16%, 22.9. Transformer: 1 0.700, 77%, 11.6; 1.5 0.701, 51%, 15.9; 1.75 0.709, 36%,
         # 17.9; 2 0.720, 26%, 20.0; 2.5 0.747, 14%, 23.8. Served: the first t whose truth-outside is within
         # twice the calibrated 9% at K = 10, the rule LCP-VAE's sigma scale follows (export/methods/lcp_vae.py):
-        # RNN 2, Transformer 2.5 (RNN 1.75 since stop 44, below). Held-out, looked at afterwards (1 s / 2 s, t = 1 -> served): RNN truth
-        # outside 68 / 55% -> 16 / 13%, ADE ratio 0.714 / 0.843 -> 0.774 / 0.938; Transformer 88 / 84% ->
-        # 29 / 13%, 0.696 / 0.799 -> 0.704 / 0.849. The stop threshold is still fitted on draws at t = 1
-        # (sample_pairs): lengths are the data's, not the spread's.
+        # RNN 2 (1.75 since stop 44, below), Transformer 2.5. Held-out, looked at afterwards (1 s / 2 s,
+        # t = 1 -> served): RNN truth outside 68 / 55% -> 16 / 13%, ADE ratio 0.714 / 0.843 -> 0.774 / 0.938;
+        # Transformer 88 / 84% -> 29 / 13%, 0.696 / 0.799 -> 0.704 / 0.849. The stop threshold is still
+        # fitted on draws at t = 1 (sample_pairs): lengths are the data's, not the spread's.
         self.temperature_default = float(cfg.get("sampling", {}).get("temperature", 1.0))
         # root: the root channel's path error counts like the pose error of the joints (square metres).
         # floor: feet below y = 0 (ops/floor.py), a term beside Eq. 6 (issue 17's shape terms).
