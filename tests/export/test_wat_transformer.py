@@ -69,7 +69,7 @@ def test_the_method_is_the_rnn_strategy_with_the_transformer_model():
     own = ("floor", "kl", "speed", "prior_speed")
     assert {k: v for k, v in cfg["loss"].items() if k not in own} == {k: v for k, v in rnn["loss"].items() if k not in own}
     assert (cfg["loss"]["kl"], cfg["loss"]["speed"], rnn["loss"]["kl"], rnn["loss"]["speed"]) == (1.0, 40.0, 0.1, 15.0)
-    assert (cfg["loss"]["prior_speed"], rnn["loss"]["prior_speed"]) == (15.0, 5.0)
+    assert (cfg["loss"]["prior_speed"], rnn["loss"]["prior_speed"]) == (15.0, 10.0)
     # the inputs and the slowed pairs are the same (models/inputs.py, ops/time_scale.py)
     assert {k: cfg["model"][k] for k in ("root_input", "history_steps")} == \
         {k: rnn["model"][k] for k in ("root_input", "history_steps")} and cfg["augment"] == rnn["augment"]
