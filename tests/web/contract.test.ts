@@ -62,7 +62,7 @@ describe('contract validation in TypeScript', () => {
     const withEnv = doc.models.filter((m) => 'envelope' in m.params);
     expect(withEnv.length).toBe(raw.models.length);
     for (const m of withEnv) {
-      const env = (m.params as { envelope: Record<string, unknown> }).envelope;
+      const env = (m.params as { envelope?: Record<string, unknown> }).envelope ?? {};
       for (const [q, v] of Object.entries(shared)) expect(env[q]).toEqual(v);
       // the model's own quantities are kept beside the shared ones
       const own = raw.models.find((r: { id: string }) => r.id === m.id).params.envelope;
