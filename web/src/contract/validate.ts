@@ -90,7 +90,7 @@ export function validate<S extends SchemaName>(doc: unknown, schema: S, where: s
 
 /** The manifest as its models use it (twin of expand_speed_envelope in export/manifest.py): the file stores
  *  the speed envelope every model shares once, at its top level; each model's envelope gets it back. */
-export function expandSpeedEnvelope(doc: Manifest): Manifest {
+function expandSpeedEnvelope(doc: Manifest): Manifest {
   const shared = doc.speed_envelope;
   if (!shared) return doc;
   const { speed_envelope: _, ...rest } = doc;
