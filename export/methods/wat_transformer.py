@@ -27,6 +27,14 @@ class WatTransformerMethod(WatMethod):
     # out 0.922, 0.62 / 0.48, 0.39, 88%. On the held-out ballet and balance histories of person 49 (poses held
     # at 0.03 m/s) it gives 1.2-1.3x zero-velocity's ADE where the served RNN gives 1.8-2.1x: a decoder that
     # reads the padded history holds a pose more readily than one that feeds its own frames back.
+    # Tried, not kept (stop 45): the RNN's KL weight 0.1 (Eq. 6's KL weight; methods/wat.py says why the RNN
+    # serves it), alone and with the RNN's speed weight 15, 8000 steps each. The latent then carried ~25 nats.
+    # In-sample 2 s windows (84, K = 10) at prior temperature 1.5 (ADE/ZV, joint speed / truth's in seconds 1 / 2,
+    # truth outside, feet below the floor, hip vertical range / truth's in walks): served (t 2.5) 0.751, 0.61 /
+    # 0.39, 21%, 1.6%, 1.8x; kl 0.1 0.884, 0.84 / 0.74, 27%, 18.9%, 2.5x; kl 0.1 + speed 15 0.916, 0.84 / 0.70,
+    # 25%, 28.6%, 4.2x. At t 1 / 0.5 (kl 0.1): 0.934 / 1.072, feet below 18.9 / 18.6%. The futures move, but
+    # the root bobs and sinks even at t 0.5: the floor term (3000 here) acts only on the posterior's
+    # reconstructions, and with the prior 25 nats from the posterior its draws are futures that term never saw.
 
     def build(self, data: TrainingData) -> nn.Module:
         # The decoder's padded sequence and positional encodings need N (the RNN does not).
